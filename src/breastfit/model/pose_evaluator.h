@@ -1,0 +1,72 @@
+#pragma once
+/// \file Posing of the rigged template and its analytic Jacobians (docs/DESIGN.md §2):
+///   B_i = v_i + Σ_k α_k b_ki
+///   x_i = Σ_j w_ji ( R_j U_j diag(s_j) U_jᵀ (B_i − c_j) + c_j + t_j )
+///   M_i = s_g R_g x_i + t_g
+#include <vector>
+
+#include "breastfit/core/types.h"
+#include "breastfit/mesh/surface_point.h"
+#include "breastfit/model/param_layout.h"
+#include "breastfit/model/pose_params.h"
+#include "breastfit/model/rigged_model.h"
+
+namespace breastfit::model {
+
+/// Sparse 3-row Jacobian of one point: entries (parameter index in ParamLayout, ∂M/∂θ ∈ R³),
+/// parameter indices unique within one Jacobian.
+struct PointJacobian {
+  std::vector<int> params;
+  std::vector<Vec3> columns;
+  void clear() { params.clear(); columns.clear(); }
+};
+
+/// Poses the model for a parameter set and answers Jacobian queries for it.
+/// Build once per model; call set_params() every solver iteration (O(#V + nnz(blendshapes))).
+class PoseEvaluator {
+ public:
+  /// \pre model.validate() passes. Keeps a reference: the model must outlive the evaluator.
+  explicit PoseEvaluator(const RiggedModel& model);
+
+  const RiggedModel& model() const { return model_; }
+  const ParamLayout& layout() const { return layout_; }
+
+  /// Poses all vertices for `params`.
+  void set_params(const PoseParams& params);
+  const PoseParams& params() const { return params_; }
+
+  /// Posed vertices M (#V by 3, after the global similarity).
+  const Points& vertices() const { return posed_; }
+  /// Area-weighted unit normals of the posed mesh.
+  Points vertex_normals() const;
+
+  /// Sparse Jacobian of posed vertex i w.r.t. the increment δ of ParamLayout. Entries for the
+  /// 7 global parameters, the 9 parameters of each bone with w_ji > 0, and each blendshape moving i.
+  void vertex_jacobian(Index i, PointJacobian& out) const;
+
+  /// Position and Jacobian of a surface point (barycentric blend of its triangle's corners).
+  Vec3 surface_point(const SurfacePoint& p) const;
+  void surface_point_jacobian(const SurfacePoint& p, PointJacobian& out) const;
+
+  /// World position of bone j's pivot as moved by bone `by` (used by joint continuity terms):
+  /// G( R_by U diag(s) Uᵀ (c_j − c_by) + c_by + t_by ), and its Jacobian.
+  Vec3 pivot_moved_by(int j, int by) const;
+  void pivot_moved_by_jacobian(int j, int by, PointJacobian& out) const;
+
+ private:
+  const RiggedModel& model_;
+  ParamLayout layout_;
+  PoseParams params_;
+  Points shaped_;   // B (#V by 3)
+  Points skinned_;  // x (#V by 3), before the global similarity
+  Points posed_;    // M
+  std::vector<Mat3> bone_linear_;   // R_j U_j diag(s_j) U_jᵀ
+  std::vector<Mat3> vertex_linear_; // A_i = Σ_j w_ji L_j
+  // blendshape incidence: for vertex i, the (shape k, row in shape k) pairs
+  std::vector<std::vector<std::pair<int, int>>> vertex_shapes_;
+};
+
+/// One-call posing: posed vertices of `model` for `params`.
+Points pose_vertices(const RiggedModel& model, const PoseParams& params);
+
+}  // namespace breastfit::model

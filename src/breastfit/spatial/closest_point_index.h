@@ -1,0 +1,49 @@
+#pragma once
+/// \file Exact closest point on a triangle mesh (point-to-triangle, not nearest vertex).
+#include <memory>
+#include <optional>
+
+#include "breastfit/core/types.h"
+#include "breastfit/mesh/triangle_mesh.h"
+
+namespace breastfit::spatial {
+
+/// Which feature of the triangle holds the closest point.
+enum class ClosestFeature { Face, Edge01, Edge12, Edge20, Vertex0, Vertex1, Vertex2 };
+
+struct ClosestPoint {
+  Vec3 point = Vec3::Zero();   ///< closest point on the surface
+  Index face = 0;              ///< triangle holding it
+  Vec3 bary = Vec3::Zero();    ///< barycentric coordinates of `point` in `face`
+  double sq_dist = 0.0;        ///< squared distance query→point
+  ClosestFeature feature = ClosestFeature::Face;
+  bool on_boundary = false;    ///< the closest feature is an open-boundary edge or vertex
+  double distance() const;
+};
+
+/// Built once over a triangle mesh (BVH); queried many times, thread-safe for queries.
+class ClosestPointIndex {
+ public:
+  /// \throws InvalidInput when the mesh has no triangles or non-finite vertices.
+  explicit ClosestPointIndex(const TriangleMesh& mesh);
+  ~ClosestPointIndex();
+  ClosestPointIndex(ClosestPointIndex&&) noexcept;
+  ClosestPointIndex& operator=(ClosestPointIndex&&) noexcept;
+
+  /// Exact closest point to q.
+  ClosestPoint closest(const Vec3& q) const;
+  /// Closest point within max_dist of q, or nullopt (faster: prunes with the radius).
+  std::optional<ClosestPoint> closest_within(const Vec3& q, double max_dist) const;
+
+  /// Unit face normal of a triangle (zero for degenerate triangles).
+  Vec3 face_normal(Index face) const;
+  /// Area-weighted vertex normal interpolated at a closest point (smooth normal).
+  Vec3 smooth_normal(const ClosestPoint& cp) const;
+  const TriangleMesh& mesh() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace breastfit::spatial

@@ -1,0 +1,21 @@
+#pragma once
+// Paths the tests need: the repository's test data, the source tree and the built CLI.
+#include <filesystem>
+#include <string>
+
+namespace breastfit::test {
+
+/// tests/data in the source tree (small hand-written fixtures only).
+std::filesystem::path data_dir();
+/// The repository root.
+std::filesystem::path source_dir();
+/// The built `breastfit` executable (empty when the CLI is not built).
+std::filesystem::path cli_path();
+/// A fresh, empty temporary directory unique to the calling test (removed at exit).
+std::filesystem::path temp_dir();
+
+/// Runs the CLI with the given argument string through /bin/sh; returns the exit code and
+/// captures stdout+stderr into `output`.
+int run_cli(const std::string& args, std::string* output = nullptr);
+
+}  // namespace breastfit::test
