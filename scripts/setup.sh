@@ -21,7 +21,7 @@ done
 packages=(
   build-essential cmake ninja-build pkg-config
   libeigen3-dev nlohmann-json3-dev libcli11-dev libtinygltf-dev libstb-dev
-  libgtest-dev libgmock-dev libbenchmark-dev
+  libgtest-dev libgmock-dev libbenchmark-dev libnanoflann-dev
   python3-numpy python3-scipy python3-matplotlib
 )
 

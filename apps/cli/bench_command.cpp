@@ -1,10 +1,101 @@
-// PLACEHOLDER: replaced by the owner of the 'bench' subcommand.
+// breastfit bench DIR: end-to-end registration timings (medians) over a directory of cases.
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+
+#include <nlohmann/json.hpp>
+
 #include "breastfit/core/errors.h"
+#include "breastfit/io/io.h"
+#include "breastfit/io/landmarks_io.h"
+#include "breastfit/pipeline/register_scan.h"
+#include "command_support.h"
 #include "commands.h"
 
 namespace breastfit::cli {
-void register_bench(CLI::App& app, int& exit_code) {
-  auto* sub = app.add_subcommand("bench", "(not built yet)");
-  sub->callback([] { throw InvalidInput("'bench' is not implemented yet"); });
+namespace {
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
+
+// Case directories: DIR itself when it holds scan.ply, else its subdirectories that do (sorted).
+std::vector<std::filesystem::path> case_dirs(const std::filesystem::path& dir) {
+  namespace fs = std::filesystem;
+  if (!fs::is_directory(dir)) throw IoError(dir.string(), "not a directory");
+  if (fs::exists(dir / "scan.ply")) return {dir};
+  std::vector<fs::path> out;
+  for (const auto& e : fs::directory_iterator(dir))
+    if (e.is_directory() && fs::exists(e.path() / "scan.ply")) out.push_back(e.path());
+  std::sort(out.begin(), out.end());
+  if (out.empty()) throw IoError(dir.string(), "holds no case directory (a folder with scan.ply)");
+  return out;
+}
+
+}  // namespace
+
+void register_bench(CLI::App& app, int& exit_code) {
+  struct Args {
+    std::string dir, template_path, config, json_out;
+    int repeat = 5;
+    bool no_landmarks = false;
+    FitFlags fit;
+  };
+  auto args = std::make_shared<Args>();
+  auto* sub = app.add_subcommand("bench", "Time the registration end to end on case directories (scan.ply + "
+                                          "landmarks.mrk.json) and print medians");
+  sub->add_option("dir", args->dir, "a case directory or a directory of them")->required();
+  sub->add_option("--repeat,-n", args->repeat, "registrations per case (the median is reported)")
+      ->check(CLI::Range(1, 100));
+  sub->add_flag("--no-landmarks", args->no_landmarks, "landmark-free registration");
+  sub->add_option("--template,-t", args->template_path, "rigged template (.glb/.gltf)");
+  sub->add_option("--config", args->config, "JSON file with fit options");
+  sub->add_option("--json", args->json_out, "also write every number to this JSON file");
+  add_fit_flags(*sub, args->fit);
+  sub->callback([args, &exit_code] {
+    const auto model = load_template(args->template_path);
+    auto options = load_fit_options(args->config, args->fit);
+    if (args->no_landmarks) options.use_landmarks = false;
+    nlohmann::json cases = nlohmann::json::array();
+    std::vector<double> medians;
+    std::printf("%-24s %9s %6s %10s %10s %8s\n", "case", "time_s", "iters", "surf_mae", "lm_mae", "status");
+    for (const auto& dir : case_dirs(args->dir)) {
+      const TriangleMesh scan = io::read_mesh(dir / "scan.ply");
+      pipeline::RegisterRequest req;
+      req.scan = &scan;
+      req.scan_name = (dir / "scan.ply").string();
+      req.model = &model;
+      req.options = options;
+      if (!args->no_landmarks && std::filesystem::exists(dir / "landmarks.mrk.json"))
+        req.landmarks = io::read_landmarks(dir / "landmarks.mrk.json");
+      std::vector<double> times;
+      pipeline::RegisterResult last;
+      for (int k = 0; k < args->repeat; ++k) {
+        last = pipeline::register_scan(req);
+        times.push_back(last.time_s);
+      }
+      const double med = median(times);
+      medians.push_back(med);
+      std::printf("%-24s %9.4f %6zu %10.3f %10.3f %8s\n", dir.filename().string().c_str(), med,
+                  last.fit.summary.iterations.size(), last.surface.mae, last.landmarks.stats.mae,
+                  last.usable() ? "ok" : "FAILED");
+      cases.push_back({{"case", dir.filename().string()}, {"time_s_median", med}, {"time_s_all", times},
+                       {"iterations", last.fit.summary.iterations.size()}, {"usable", last.usable()},
+                       {"surface_mae_mm", last.surface.mae}, {"landmark_mae_mm", last.landmarks.stats.mae}});
+    }
+    std::printf("median over cases of the per-case median time_s: %.4f s (%zu cases, %d runs each)\n",
+                median(medians), medians.size(), args->repeat);
+    if (!args->json_out.empty()) {
+      std::ofstream f(args->json_out);
+      if (!f) throw IoError(args->json_out, "cannot open for writing");
+      f << nlohmann::json{{"cases", cases}, {"median_time_s", median(medians)}, {"repeat", args->repeat}}.dump(1)
+        << "\n";
+    }
+  });
+}
+
 }  // namespace breastfit::cli

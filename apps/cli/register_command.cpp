@@ -1,10 +1,74 @@
-// PLACEHOLDER: replaced by the owner of the 'register' subcommand.
+// breastfit register SCAN [--landmarks FILE] --out DIR: the paper's registration of the template.
+#include <fstream>
+#include <iostream>
+
+#include <nlohmann/json.hpp>
+
 #include "breastfit/core/errors.h"
+#include "breastfit/io/io.h"
+#include "breastfit/io/landmarks_io.h"
+#include "breastfit/model/gltf_io.h"
+#include "breastfit/model/template_library.h"
+#include "breastfit/pipeline/register_outputs.h"
+#include "breastfit/pipeline/register_scan.h"
+#include "command_support.h"
 #include "commands.h"
+#include "exit_codes.h"
 
 namespace breastfit::cli {
+
 void register_register(CLI::App& app, int& exit_code) {
-  auto* sub = app.add_subcommand("register", "(not built yet)");
-  sub->callback([] { throw InvalidInput("'register' is not implemented yet"); });
+  struct Args {
+    std::string scan, landmarks, template_path, units = "auto", config, out;
+    bool force = false, quiet = false, no_landmarks = false;
+    FitFlags fit;
+  };
+  auto args = std::make_shared<Args>();
+  auto* sub = app.add_subcommand("register", "Register the rigged template to a scan and write the fitted model, "
+                                             "its landmarks and drawings, parameters and a report");
+  sub->add_option("scan", args->scan, "scan mesh (.ply .obj .stl; a vertex-only PLY is a point cloud)")->required();
+  sub->add_option("--landmarks,-l", args->landmarks, "landmarks on the scan (.mrk.json, .json or .csv)");
+  sub->add_flag("--no-landmarks", args->no_landmarks, "ignore landmarks: landmark-free initialisation and fit");
+  sub->add_option("--template,-t", args->template_path, "rigged template (.glb/.gltf); default: the shipped torso");
+  sub->add_option("--units", args->units, "scan units: auto (from the extent), mm or m")
+      ->check(CLI::IsMember({"auto", "mm", "m"}));
+  sub->add_option("--config", args->config, "JSON file with fit options (see docs/REGISTRATION.md)");
+  sub->add_option("--out,-o", args->out, "output directory (created)")->required();
+  sub->add_flag("--force", args->force, "replace existing output files in --out");
+  sub->add_flag("--quiet,-q", args->quiet, "no progress lines");
+  add_fit_flags(*sub, args->fit);
+  sub->callback([args, &exit_code] {
+    namespace fs = std::filesystem;
+    std::vector<fs::path> inputs{args->scan};
+    if (!args->landmarks.empty()) inputs.push_back(args->landmarks);
+    if (!args->config.empty()) inputs.push_back(args->config);
+    if (!args->template_path.empty()) inputs.push_back(args->template_path);
+    pipeline::check_output_dir(args->out, args->force, inputs);
+
+    pipeline::RegisterRequest req;
+    const TriangleMesh scan = io::read_mesh(args->scan);
+    req.scan = &scan;
+    req.scan_name = args->scan;
+    req.units = parse_units_flag(args->units);
+    if (!args->landmarks.empty() && !args->no_landmarks) req.landmarks = io::read_landmarks(args->landmarks);
+    const model::RiggedModel model = load_template(args->template_path);
+    req.model = &model;
+    req.options = load_fit_options(args->config, args->fit);
+    if (args->no_landmarks) req.options.use_landmarks = false;
+
+    const auto result = pipeline::register_scan(req, progress_printer(args->quiet));
+    if (!result.usable()) {
+      std::cerr << "breastfit: error: " << args->scan << ": " << result.fit.summary.message << "\n";
+      // Keep the evidence, but no fitted outputs that could be mistaken for a result.
+      fs::create_directories(args->out);
+      std::ofstream(fs::path(args->out) / "report.json") << result.report().dump(1) << "\n";
+      exit_code = kExitNotConverged;
+      return;
+    }
+    pipeline::write_register_outputs(args->out, result, model, args->force, inputs);
+    for (const auto& w : result.warnings) std::cerr << "breastfit: warning: " << w << "\n";
+    if (!args->quiet) print_register_summary(std::cout, result, args->out);
+  });
 }
+
 }  // namespace breastfit::cli

@@ -1,10 +1,267 @@
-// PLACEHOLDER: replaced by the owner of the 'render' subcommand.
+// `breastfit render`: headless PNG views of a mesh (with landmarks and drawings) or of a rigged
+// template. See docs/RENDER.md.
+#include <cctype>
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+#include <optional>
+#include <string>
+#include <vector>
+
 #include "breastfit/core/errors.h"
+#include "breastfit/io/io.h"
+#include "breastfit/io/landmarks_io.h"
+#include "breastfit/io/markups.h"
+#include "breastfit/mesh/units.h"
+#include "breastfit/model/gltf_io.h"
+#include "breastfit/model/template_library.h"
+#include "breastfit/render/body_frame.h"
+#include "breastfit/render/scene.h"
+#include "breastfit/template/default_template.h"
 #include "commands.h"
 
 namespace breastfit::cli {
-void register_render(CLI::App& app, int& exit_code) {
-  auto* sub = app.add_subcommand("render", "(not built yet)");
-  sub->callback([] { throw InvalidInput("'render' is not implemented yet"); });
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct RenderArgs {
+  std::string mesh;
+  std::string template_file;
+  bool use_template = false;
+  std::string landmarks;
+  std::string drawings;
+  std::string view = "front";
+  int size = 1024;
+  std::string title;
+  std::string out;
+  std::string frame = "auto";
+  std::string units = "auto";
+  bool wireframe = false;
+  bool no_labels = false;
+  bool no_hidden = false;
+};
+
+bool ends_with_png(const std::string& s) {
+  if (s.size() < 4) return false;
+  std::string ext = s.substr(s.size() - 4);
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext == ".png";
 }
+
+/// Output path of one view: the exact file for a single view given as *.png, else PREFIX_view.png.
+fs::path output_path(const std::string& out, render::View view, bool single) {
+  if (single && ends_with_png(out)) return fs::path(out);
+  const std::string prefix = ends_with_png(out) ? out.substr(0, out.size() - 4) : out;
+  return fs::path(prefix + "_" + std::string(render::view_name(view)) + ".png");
+}
+
+render::ScenePoint landmark_point(const std::string& name, const Vec3& p) {
+  render::ScenePoint sp;
+  sp.label = name;
+  sp.position = p;
+  sp.colour = {215, 25, 32};
+  sp.radius_px = 6.0;
+  return sp;
+}
+
+void add_curve(render::Scene& scene, const std::string& name, bool closed, const Points& points) {
+  render::ScenePolyline l;
+  l.name = name;
+  l.points = points;
+  l.closed = closed;
+  l.colour = render::palette_colour(scene.polylines.size());
+  l.width_px = 3.0;
+  scene.polylines.push_back(std::move(l));
+}
+
+/// Adds the landmarks of a file (positions converted to `scale_to_scene` × mm-or-declared units).
+void add_landmarks(render::Scene& scene, render::NamedPositions& named, const std::string& path,
+                   std::optional<mesh::Units> scene_units) {
+  io::LandmarkReadOptions opt;
+  opt.require_known_names = false;
+  LandmarkSet lm = io::read_landmarks(path, opt);
+  // Bring declared units to the scene's units (undeclared: assume the scene's units).
+  double factor = 1.0;
+  if (lm.declared_units && scene_units) {
+    const double declared_mm = *lm.declared_units == "m" ? 1000.0 : 1.0;
+    factor = declared_mm / mesh::to_mm_factor(*scene_units);
+  }
+  for (const NamedPoint& p : lm.points) {
+    scene.points.push_back(landmark_point(p.name, factor * p.position));
+    named[p.name] = factor * p.position;
+  }
+}
+
+/// Adds the curves (and points) of a markups file; read_markups gives millimetres.
+void add_drawings(render::Scene& scene, const std::string& path, std::optional<mesh::Units> scene_units) {
+  const Markups m = io::read_markups(path);
+  const double factor = scene_units ? 1.0 / mesh::to_mm_factor(*scene_units) : 1.0;
+  for (const Curve& c : m.curves) add_curve(scene, c.name, c.closed, factor * c.points);
+  for (const NamedPoint& p : m.points) {
+    render::ScenePoint sp = landmark_point(p.name, factor * p.position);
+    sp.colour = {30, 30, 30};
+    sp.radius_px = 4.0;
+    scene.points.push_back(sp);
+  }
+}
+
+/// The shipped default template (model::default_template_path(): $BREASTFIT_TEMPLATE, installed
+/// or source-tree default_torso.glb); when none is shipped and $BREASTFIT_TEMPLATE is not set,
+/// the template built in memory by templ::build_default_template().
+model::RiggedModel default_template(std::string& what) {
+  const char* env = std::getenv("BREASTFIT_TEMPLATE");
+  if (env && *env) {
+    what = fs::path(env).filename().string();
+    return model::load_default_template();  // an explicit choice: no fallback
+  }
+  std::optional<fs::path> shipped;
+  try {
+    shipped = model::default_template_path();
+  } catch (const IoError&) {
+    shipped.reset();
+  }
+  if (shipped) {
+    what = "default template (" + shipped->filename().string() + ")";
+    return model::load_gltf(*shipped);
+  }
+  what = "default template (built)";
+  return templ::build_default_template();
+}
+
+void run_render(const RenderArgs& a) {
+  if (a.out.empty()) throw InvalidInput("render: --out is required");
+  if (a.size < 16 || a.size > 8192) throw InvalidInput("render: --size must be in [16, 8192], got " + std::to_string(a.size));
+  if (a.use_template == !a.mesh.empty())
+    throw InvalidInput("render: give either a MESH file or --template [FILE], not both / neither");
+  if (a.frame != "auto" && a.frame != "landmarks" && a.frame != "axes" && a.frame != "identity")
+    throw InvalidInput("render: --frame must be auto, landmarks, axes or identity, got '" + a.frame + "'");
+  std::vector<render::View> views;
+  if (a.view == "all")
+    views = render::default_views();
+  else
+    views = {render::view_from_name(a.view)};
+
+  render::Scene scene;
+  render::NamedPositions named;
+  std::string what;
+  Eigen::Matrix4d body_to_world = Eigen::Matrix4d::Identity();
+  std::string frame_note = "body frame (identity)";
+
+  if (a.use_template) {
+    model::RiggedModel model;
+    if (!a.template_file.empty()) {
+      model = model::load_gltf(a.template_file);
+      what = fs::path(a.template_file).filename().string();
+    } else {
+      model = default_template(what);
+    }
+    scene.meshes.emplace_back();
+    scene.meshes.back().name = model.name;
+    scene.meshes.back().mesh = model.rest;
+    scene.meshes.back().wireframe = a.wireframe;
+    for (const model::Drawing& d : model.drawings) {
+      Points P(static_cast<Eigen::Index>(d.points.size()), 3);
+      for (size_t i = 0; i < d.points.size(); ++i)
+        P.row(static_cast<Eigen::Index>(i)) = d.points[i].position(model.rest.V, model.rest.F).transpose();
+      add_curve(scene, d.name, d.closed, P);
+    }
+    for (const model::ModelLandmark& l : model.landmarks) {
+      const Vec3 p = l.point.position(model.rest.V, model.rest.F);
+      scene.points.push_back(landmark_point(l.name, p));
+      named[l.name] = p;
+    }
+    // The template is in millimetres, in the body frame.
+    if (!a.landmarks.empty()) add_landmarks(scene, named, a.landmarks, mesh::Units::Millimetres);
+    if (!a.drawings.empty()) add_drawings(scene, a.drawings, mesh::Units::Millimetres);
+  } else {
+    TriangleMesh mesh = io::read_mesh(a.mesh);
+    what = fs::path(a.mesh).filename().string();
+    // Units only matter to bring declared-unit markups to the mesh's units; an ambiguous mesh
+    // (not torso-sized) is taken as millimetres unless --units says otherwise.
+    std::optional<mesh::Units> units = mesh::parse_units(a.units);
+    if (!units) {
+      try {
+        units = mesh::detect_units(mesh.V);
+      } catch (const InvalidInput&) {
+        units = mesh::Units::Millimetres;
+      }
+    }
+    scene.meshes.emplace_back();
+    scene.meshes.back().name = what;
+    scene.meshes.back().mesh = std::move(mesh);
+    scene.meshes.back().wireframe = a.wireframe;
+    if (!a.landmarks.empty()) add_landmarks(scene, named, a.landmarks, units);
+    if (!a.drawings.empty()) add_drawings(scene, a.drawings, units);
+  }
+
+  // The view frame: the template is in the body frame already; a scan is in a scanner frame.
+  const std::string frame_mode = a.frame == "auto" ? (a.use_template ? "identity" : "estimate") : a.frame;
+  if (frame_mode == "estimate" || frame_mode == "landmarks" || frame_mode == "axes") {
+    std::optional<render::BodyFrame> bf;
+    if (frame_mode != "axes") bf = render::body_frame_from_landmarks(named);
+    if (!bf && frame_mode == "landmarks")
+      throw InvalidInput("render: --frame landmarks needs sternal_notch/xiphoid (or acromions with breasts) "
+                         "and a left/right pair (acromion, midaxillary, pectoral_insertion, nipple or lowest_breast)");
+    if (!bf) bf = render::body_frame_from_principal_axes(scene.meshes.front().mesh);
+    body_to_world = bf->body_to_world;
+    frame_note = "body frame from " + bf->description;
+  }
+
+  render::RenderOptions opt;
+  opt.width = a.size;
+  opt.height = a.size;
+  opt.body_to_world = body_to_world;
+  opt.show_labels = !a.no_labels;
+  opt.show_hidden = !a.no_hidden;
+  for (render::View v : views) {
+    opt.view = v;
+    opt.title = a.title.empty() ? what : a.title;
+    const render::Image img = render::render_scene(scene, opt);
+    const fs::path path = output_path(a.out, v, views.size() == 1);
+    if (path.has_parent_path()) {
+      std::error_code ec;
+      fs::create_directories(path.parent_path(), ec);
+      if (ec) throw IoError(path.parent_path().string(), "cannot create directory: " + ec.message());
+    }
+    img.save_png(path);
+    std::cout << "wrote " << path.string() << " (" << render::view_name(v) << ", " << a.size << "x" << a.size
+              << ")\n";
+  }
+  std::cout << frame_note << "\n";
+}
+
+}  // namespace
+
+void register_render(CLI::App& app, int& exit_code) {
+  auto args = std::make_shared<RenderArgs>();
+  auto* sub = app.add_subcommand("render", "Render a mesh (with landmarks and drawings) or a template to PNG");
+  sub->add_option("mesh", args->mesh, "Mesh file (.ply, .obj, .stl); omit with --template");
+  auto* tpl = sub->add_option("--template", args->template_file,
+                              "Render a rigged template (.gltf/.glb) with its landmarks and drawings on the rest "
+                              "mesh; without FILE the built-in default template")
+                  ->expected(0, 1);
+  sub->add_option("--landmarks", args->landmarks, "Landmarks to draw (.mrk.json, .json, .csv)");
+  sub->add_option("--drawings", args->drawings, "Curves to draw (Slicer .mrk.json)");
+  sub->add_option("--view", args->view, "front, side, oblique, back, top or all (= front, side, oblique)")
+      ->capture_default_str();
+  sub->add_option("--size", args->size, "Image width and height in pixels")->capture_default_str();
+  sub->add_option("--title", args->title, "Caption line (default: the input's file name)");
+  sub->add_option("--out", args->out, "Output PNG, or prefix: PREFIX_<view>.png")->required();
+  sub->add_option("--frame", args->frame,
+                  "View frame: auto (template: identity; mesh: landmarks, else principal axes), landmarks, "
+                  "axes, identity")
+      ->capture_default_str();
+  sub->add_option("--units", args->units, "Mesh units for declared-unit markups: auto, mm or m")->capture_default_str();
+  sub->add_flag("--wireframe", args->wireframe, "Overlay the mesh edges");
+  sub->add_flag("--no-labels", args->no_labels, "Do not draw landmark names");
+  sub->add_flag("--no-hidden", args->no_hidden, "Omit hidden landmarks and curve parts (default: dimmed)");
+  sub->callback([args, tpl, &exit_code] {
+    args->use_template = tpl->count() > 0;
+    run_render(*args);
+    (void)exit_code;
+  });
+}
+
 }  // namespace breastfit::cli

@@ -60,10 +60,17 @@ class PoseEvaluator {
   Points shaped_;   // B (#V by 3)
   Points skinned_;  // x (#V by 3), before the global similarity
   Points posed_;    // M
-  std::vector<Mat3> bone_linear_;   // R_j U_j diag(s_j) U_jᵀ
-  std::vector<Mat3> vertex_linear_; // A_i = Σ_j w_ji L_j
-  // blendshape incidence: for vertex i, the (shape k, row in shape k) pairs
-  std::vector<std::vector<std::pair<int, int>>> vertex_shapes_;
+  std::vector<Mat3> bone_linear_;   // L_j = R_j U_j diag(s_j) U_jᵀ
+  std::vector<Mat3> vertex_linear_; // s_g R_g A_i with A_i = Σ_j w_ji L_j (blendshape columns)
+  std::vector<Mat3> bone_scale_axes_;  // s_g R_g R_j U_j (bone scale columns)
+  Mat3 global_linear_ = Mat3::Identity();  // s_g R_g
+  // blendshape incidence (CSR): for vertex i, entries [shape_ptr_[i], shape_ptr_[i+1]) of
+  // shape_entries_ are the (shape k, row in shape k) pairs moving it
+  std::vector<int> shape_ptr_;
+  std::vector<std::pair<int, int>> shape_entries_;
+
+  void append_global(const Vec3& x, PointJacobian& out) const;
+  void append_bone(int j, double w, const Vec3& d, PointJacobian& out) const;
 };
 
 /// One-call posing: posed vertices of `model` for `params`.

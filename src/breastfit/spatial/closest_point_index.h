@@ -2,6 +2,7 @@
 /// \file Exact closest point on a triangle mesh (point-to-triangle, not nearest vertex).
 #include <memory>
 #include <optional>
+#include <vector>
 
 #include "breastfit/core/types.h"
 #include "breastfit/mesh/triangle_mesh.h"
@@ -34,6 +35,20 @@ class ClosestPointIndex {
   ClosestPoint closest(const Vec3& q) const;
   /// Closest point within max_dist of q, or nullopt (faster: prunes with the radius).
   std::optional<ClosestPoint> closest_within(const Vec3& q, double max_dist) const;
+
+  /// closest() warm-started from a guess (e.g. last iteration's face for the same query):
+  /// the distance to `hint_face` bounds the search from the start. Same result as closest(q)
+  /// (ties still go to the lowest face index); only faster when the hint is good.
+  /// An out-of-range hint is ignored. (Addition by the spatial helper, backwards compatible.)
+  ClosestPoint closest(const Vec3& q, Index hint_face) const;
+  /// closest_within() warm-started from `hint_face`; same result as without the hint.
+  std::optional<ClosestPoint> closest_within(const Vec3& q, double max_dist,
+                                             Index hint_face) const;
+  /// Closest points of all rows of Q (#Q by 3), in input order; identical to calling closest()
+  /// per row, but faster for many queries: processed in Morton (Z-curve) order, each query
+  /// warm-started from the previous one's face. Single-threaded.
+  /// \throws InvalidInput when a row is not finite (as closest() does for a non-finite q).
+  std::vector<ClosestPoint> closest_batch(const Points& Q) const;
 
   /// Unit face normal of a triangle (zero for degenerate triangles).
   Vec3 face_normal(Index face) const;

@@ -1,0 +1,98 @@
+#include "command_support.h"
+
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+
+#include <nlohmann/json.hpp>
+
+#include "breastfit/core/errors.h"
+#include "breastfit/model/gltf_io.h"
+#include "breastfit/model/template_library.h"
+#include "breastfit/pipeline/register_scan.h"
+
+namespace breastfit::cli {
+
+void add_fit_flags(CLI::App& sub, FitFlags& f) {
+  auto* g = sub.add_option_group("fit weights", "energy weights (E = Σ term/λ; smaller λ = stronger term)");
+  g->add_option("--lambda-data", f.lambda_data, "λD, data term (mm²)");
+  g->add_option("--lambda-reverse", f.lambda_reverse, "λR, reverse data term (mm²; <= 0 disables)");
+  g->add_option("--lambda-landmarks", f.lambda_landmarks, "λL, landmark term (mm²)");
+  g->add_option("--lambda-scale", f.lambda_scale, "λS, bone scale regulariser");
+  g->add_option("--lambda-blendshapes", f.lambda_blendshapes, "λBS, blendshape regulariser");
+  g->add_option("--lambda-joints", f.lambda_joints, "λJ, joint regulariser");
+  g->add_option("--lambda-continuity", f.lambda_continuity, "λC, joint continuity penalty (mm²)");
+  g->add_option("--max-blendshapes", f.max_blendshapes, "use only the first N blendshapes");
+  g->add_option("--max-landmarks", f.max_landmarks, "use only the first N landmarks (paper order)");
+}
+
+fit::FitOptions load_fit_options(const std::string& config_path, const FitFlags& f) {
+  fit::FitOptions o;
+  if (!config_path.empty()) {
+    std::ifstream in(config_path);
+    if (!in) throw IoError(config_path, "cannot open the config file");
+    nlohmann::json j;
+    try {
+      j = nlohmann::json::parse(in);
+    } catch (const nlohmann::json::exception& e) {
+      throw IoError(config_path, std::string("not valid JSON: ") + e.what());
+    }
+    try {
+      fit::update_from_json(o, j);
+    } catch (const InvalidInput& e) {
+      throw IoError(config_path, e.what());
+    }
+  }
+  auto& w = o.weights;
+  if (f.lambda_data) w.lambda_data = *f.lambda_data;
+  if (f.lambda_reverse) w.lambda_reverse = *f.lambda_reverse;
+  if (f.lambda_landmarks) w.lambda_landmarks = *f.lambda_landmarks;
+  if (f.lambda_scale) w.lambda_scale = *f.lambda_scale;
+  if (f.lambda_blendshapes) w.lambda_blendshapes = *f.lambda_blendshapes;
+  if (f.lambda_joints) w.lambda_joints = *f.lambda_joints;
+  if (f.lambda_continuity) w.lambda_continuity = *f.lambda_continuity;
+  if (f.max_blendshapes) o.max_blendshapes = *f.max_blendshapes;
+  if (f.max_landmarks) o.max_landmarks = *f.max_landmarks;
+  o.validate();
+  return o;
+}
+
+std::optional<mesh::Units> parse_units_flag(const std::string& text) {
+  if (text == "auto") return std::nullopt;
+  const auto u = mesh::parse_units(text);
+  if (!u) throw InvalidInput("--units '" + text + "': expected auto, mm or m");
+  return u;
+}
+
+model::RiggedModel load_template(const std::string& path) {
+  const std::filesystem::path p = path.empty() ? model::default_template_path() : std::filesystem::path(path);
+  return model::load_gltf(p);
+}
+
+fit::IterationCallback progress_printer(bool quiet) {
+  if (quiet) return {};
+  return [](const fit::IterationRecord& r) {
+    std::fprintf(stderr, "  %-6s %3d  E %.5g -> %.5g  d<%.1f mm  kept %d  %s\n", r.stage.c_str(), r.iteration,
+                 r.energy_before, r.energy_after, r.max_distance_mm, r.kept, r.accepted ? "" : "(rejected step)");
+  };
+}
+
+void print_register_summary(std::ostream& os, const pipeline::RegisterResult& r, const std::string& out_dir) {
+  char buf[512];
+  const auto& s = r.fit.summary;
+  std::snprintf(buf, sizeof buf,
+                "registered in %.3f s (%zu iterations, %s); units %s\n"
+                "  surface error (fitted vertices -> scan): MAE %.2f mm, SD %.2f mm, max %.1f mm (%d vertices)\n",
+                r.time_s, s.iterations.size(), s.message.c_str(), std::string(mesh::units_name(r.scan.units)).c_str(),
+                r.surface.mae, r.surface.sd, r.surface.max, r.surface.n);
+  os << buf;
+  if (r.landmarks.stats.n > 0) {
+    std::snprintf(buf, sizeof buf, "  landmark error (%d landmarks): MAE %.2f mm, SD %.2f mm, max %.1f mm, min %.1f mm\n",
+                  r.landmarks.stats.n, r.landmarks.stats.mae, r.landmarks.stats.sd, r.landmarks.stats.max,
+                  r.landmarks.stats.min);
+    os << buf;
+  }
+  os << "  outputs: " << out_dir << "/{fitted.ply, landmarks.mrk.json, drawings.mrk.json, params.json, report.json}\n";
+}
+
+}  // namespace breastfit::cli

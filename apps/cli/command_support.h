@@ -1,0 +1,40 @@
+#pragma once
+/// \file Pieces shared by the subcommands that fit: template loading, fit-option flags,
+/// progress lines and the printed summary.
+#include <optional>
+#include <ostream>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "breastfit/fit/fit_options.h"
+#include "breastfit/fit/fit_summary.h"
+#include "breastfit/mesh/units.h"
+#include "breastfit/model/rigged_model.h"
+
+namespace breastfit::pipeline {
+struct RegisterResult;
+}
+
+namespace breastfit::cli {
+
+/// λ overrides from the command line (unset = keep the config/default value).
+struct FitFlags {
+  std::optional<double> lambda_data, lambda_reverse, lambda_landmarks, lambda_scale, lambda_blendshapes,
+      lambda_joints, lambda_continuity;
+  std::optional<int> max_blendshapes, max_landmarks;
+};
+
+void add_fit_flags(CLI::App& sub, FitFlags& flags);
+/// Defaults, then the JSON config file (if any), then the flags. \throws IoError / InvalidInput.
+fit::FitOptions load_fit_options(const std::string& config_path, const FitFlags& flags);
+/// "auto" → nullopt, "mm"/"m" → the units.
+std::optional<mesh::Units> parse_units_flag(const std::string& text);
+/// The template at `path`, or the shipped default when empty. \throws IoError / InvalidInput.
+model::RiggedModel load_template(const std::string& path);
+/// One line per iteration on stderr unless quiet.
+fit::IterationCallback progress_printer(bool quiet);
+/// The human summary of a registration.
+void print_register_summary(std::ostream& os, const pipeline::RegisterResult& r, const std::string& out_dir);
+
+}  // namespace breastfit::cli

@@ -1,0 +1,153 @@
+#include "breastfit/fit/initialization.h"
+
+#include <array>
+#include <cmath>
+#include <limits>
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
+
+#include "breastfit/core/errors.h"
+#include "breastfit/fit/lm_solver.h"
+#include "breastfit/fit/problem.h"
+#include "breastfit/mesh/landmark_names.h"
+
+namespace breastfit::fit {
+namespace {
+
+Points model_landmarks_at_rest(const model::RiggedModel& model, const std::vector<LandmarkTarget>& targets) {
+  Points P(targets.size(), 3);
+  for (size_t i = 0; i < targets.size(); ++i)
+    P.row(i) = model.landmarks[targets[i].model_landmark].point.position(model.rest.V, model.rest.F).transpose();
+  return P;
+}
+
+Points target_positions(const std::vector<LandmarkTarget>& targets) {
+  Points P(targets.size(), 3);
+  for (size_t i = 0; i < targets.size(); ++i) P.row(i) = targets[i].position.transpose();
+  return P;
+}
+
+double rms_after(const model::Similarity& s, const Points& src, const Points& dst) {
+  double sum = 0;
+  for (Index i = 0; i < src.rows(); ++i) sum += (s.apply(src.row(i).transpose()) - dst.row(i).transpose()).squaredNorm();
+  return std::sqrt(sum / std::max<Index>(1, src.rows()));
+}
+
+// Principal axes (columns, by decreasing variance) and centroid of points.
+void principal_axes(const Points& P, Vec3& centroid, Mat3& axes, Vec3& variances) {
+  centroid = P.colwise().mean().transpose();
+  const Points C = P.rowwise() - centroid.transpose();
+  const Mat3 cov = (C.transpose() * C) / std::max<Index>(1, P.rows());
+  Eigen::SelfAdjointEigenSolver<Mat3> es(cov);
+  for (int k = 0; k < 3; ++k) {
+    axes.col(k) = es.eigenvectors().col(2 - k);
+    variances[k] = es.eigenvalues()[2 - k];
+  }
+}
+
+}  // namespace
+
+model::Similarity umeyama_similarity(const Points& src, const Points& dst) {
+  if (src.rows() < 3 || src.rows() != dst.rows())
+    throw InvalidInput("a similarity needs at least 3 matching points (got " + std::to_string(src.rows()) + ")");
+  Vec3 c;
+  Mat3 axes;
+  Vec3 var;
+  principal_axes(src, c, axes, var);
+  if (var[1] < 1e-6 * std::max(var[0], 1e-300))
+    throw InvalidInput("the landmarks are collinear: their similarity transform is undefined");
+  const Eigen::Matrix<double, 3, Eigen::Dynamic> S = src.transpose();
+  const Eigen::Matrix<double, 3, Eigen::Dynamic> D = dst.transpose();
+  const Eigen::Matrix4d T = Eigen::umeyama(S, D, true);
+  model::Similarity sim;
+  const Mat3 sR = T.topLeftCorner<3, 3>();
+  sim.scale = std::cbrt(sR.determinant());
+  sim.rotation = Quat(sR / sim.scale).normalized();
+  sim.translation = T.topRightCorner<3, 1>();
+  return sim;
+}
+
+LandmarkInitialization initialize_from_landmarks(const model::RiggedModel& model,
+                                                 std::vector<LandmarkTarget>& targets) {
+  LandmarkInitialization out;
+  const Points src = model_landmarks_at_rest(model, targets);
+  const Points dst = target_positions(targets);
+  out.similarity = umeyama_similarity(src, dst);
+  out.rms_mm = rms_after(out.similarity, src, dst);
+
+  // Same positions with every _R/_L label exchanged.
+  std::vector<LandmarkTarget> swapped = targets;
+  bool any_sided = false;
+  for (auto& t : swapped) {
+    const std::string other = mirrored_landmark_name(t.name);
+    if (other == t.name) continue;
+    const auto idx = model.landmark_index(other);
+    if (!idx) continue;
+    any_sided = true;
+    t.name = other;
+    t.model_landmark = *idx;
+  }
+  if (!any_sided) return out;
+  const Points src_swapped = model_landmarks_at_rest(model, swapped);
+  const model::Similarity sim_swapped = umeyama_similarity(src_swapped, dst);
+  const double rms_swapped = rms_after(sim_swapped, src_swapped, dst);
+  out.swapped_rms_mm = rms_swapped;
+  if (rms_swapped < 0.6 * out.rms_mm && out.rms_mm > 15.0) {
+    out.swapped = true;
+    out.swapped_rms_mm = out.rms_mm;  // as given
+    out.rms_mm = rms_swapped;
+    out.similarity = sim_swapped;
+    targets = swapped;
+  }
+  return out;
+}
+
+model::Similarity initialize_without_landmarks(const model::RiggedModel& model, ScanTarget& scan,
+                                               const FitOptions& options) {
+  Vec3 cm, cs, vm, vs;
+  Mat3 Em, Es;
+  principal_axes(model.rest.V, cm, Em, vm);
+  principal_axes(scan.sample_points().rows() >= 10 ? scan.sample_points() : scan.mesh().V, cs, Es, vs);
+  const double scale = std::sqrt(std::max(vs.sum(), 1e-12) / std::max(vm.sum(), 1e-12));
+
+  // A short rigid + scale ICP from each of the 24 proper axis assignments; keep the best.
+  FitOptions quick = options;
+  quick.correspondences.max_distance_start_mm = std::max(60.0, options.correspondences.max_distance_start_mm);
+  quick.correspondences.max_distance_end_mm = std::max(20.0, options.correspondences.max_distance_end_mm);
+  quick.correspondences.reverse_samples = 0;
+  StageOptions rigid{"landmark_free_rigid", true, false, false, 6, 8};
+  const std::vector<LandmarkTarget> none;
+  model::Similarity best;
+  double best_score = std::numeric_limits<double>::infinity();
+  const std::array<std::array<int, 3>, 6> perms{{{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}}};
+  for (const auto& perm : perms) {
+    for (int signs = 0; signs < 8; ++signs) {
+      Mat3 P = Mat3::Zero();
+      for (int k = 0; k < 3; ++k) P(perm[k], k) = (signs >> k) & 1 ? -1.0 : 1.0;
+      const Mat3 R = Es * P * Em.transpose();
+      if (R.determinant() < 0) continue;
+      model::PoseParams params = model::PoseParams::identity(model);
+      params.global.rotation = Quat(R).normalized();
+      params.global.scale = scale;
+      params.global.translation = cs - scale * (R * cm);
+      Problem problem(model, scan, quick, none);
+      FitSummary s;
+      problem.evaluator().set_params(params);
+      problem.orient_scan_normals(quick.correspondences.max_distance_start_mm);
+      if (!solve_stages(problem, {rigid}, params, s)) continue;
+      problem.evaluator().set_params(params);
+      problem.update_correspondences(quick.correspondences.max_distance_end_mm, 4, false);
+      const auto& st = problem.stats();
+      const double kept = st.candidates ? static_cast<double>(st.kept) / st.candidates : 0.0;
+      const double score = problem.kept_mae_mm() + 40.0 * (1.0 - kept);
+      if (score < best_score) {
+        best_score = score;
+        best = params.global;
+      }
+    }
+  }
+  return best;
+}
+
+}  // namespace breastfit::fit

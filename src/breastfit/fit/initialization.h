@@ -1,0 +1,37 @@
+#pragma once
+/// \file Initial placement of the template in the scan's frame: a similarity from landmarks
+/// (Umeyama with scale), detection of left/right-swapped labels, and a landmark-free multi-start.
+#include <string>
+#include <vector>
+
+#include "breastfit/fit/fit_options.h"
+#include "breastfit/fit/landmark_term.h"
+#include "breastfit/fit/scan_target.h"
+#include "breastfit/model/pose_params.h"
+#include "breastfit/model/rigged_model.h"
+
+namespace breastfit::fit {
+
+/// Least-squares similarity dst ≈ s R src + t (Umeyama 1991). src, dst: n by 3, n ≥ 3, not collinear.
+/// \throws InvalidInput when fewer than 3 points or they are (nearly) collinear.
+model::Similarity umeyama_similarity(const Points& src, const Points& dst);
+
+struct LandmarkInitialization {
+  model::Similarity similarity;
+  double rms_mm = 0.0;            ///< RMS landmark residual after the similarity
+  bool swapped = false;           ///< the input's _R/_L labels were swapped and have been corrected
+  double swapped_rms_mm = 0.0;    ///< RMS with the other labelling (for the report)
+};
+
+/// Similarity taking the rest template's landmarks onto `targets`. When swapping every _R/_L label
+/// fits far better (RMS < 0.6× and the unswapped RMS > 15 mm), the targets are relabelled in place
+/// and `swapped` is set. \pre targets.size() ≥ 3.
+LandmarkInitialization initialize_from_landmarks(const model::RiggedModel& model,
+                                                 std::vector<LandmarkTarget>& targets);
+
+/// Landmark-free initialisation: principal axes of the scan and of the template, 24 axis
+/// assignments, a short rigid ICP from each, the best kept. Deterministic.
+model::Similarity initialize_without_landmarks(const model::RiggedModel& model, ScanTarget& scan,
+                                               const FitOptions& options);
+
+}  // namespace breastfit::fit

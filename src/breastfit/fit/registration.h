@@ -1,0 +1,46 @@
+#pragma once
+/// \file The registration (paper §2.8, docs/DESIGN.md §4): coarse-to-fine Levenberg–Marquardt
+/// over the template's parameters with closest-point correspondences recomputed every iteration.
+///
+/// Example:
+/// \code
+///   fit::ScanTarget scan(scan_mm);                       // builds the closest-point index
+///   auto targets = fit::match_landmarks(model, input_landmarks_mm);
+///   fit::FitResult r = fit::register_template(model, scan, targets, fit::FitOptions{});
+///   if (!r.summary.usable()) { ... r.summary.message ... }
+/// \endcode
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "breastfit/fit/fit_options.h"
+#include "breastfit/fit/fit_summary.h"
+#include "breastfit/fit/landmark_term.h"
+#include "breastfit/fit/scan_target.h"
+#include "breastfit/model/pose_params.h"
+#include "breastfit/model/rigged_model.h"
+
+namespace breastfit::fit {
+
+struct FitResult {
+  model::PoseParams params;               ///< fitted parameters θ*
+  Points vertices;                        ///< posed template vertices, mm, scan frame
+  std::vector<LandmarkTarget> landmarks;  ///< the input landmarks as used (after any L/R correction)
+  FitSummary summary;
+};
+
+
+/// Pairs input landmarks (name, position in mm) with the model's landmarks of the same name.
+/// \throws InvalidInput for a name the model does not have, a duplicate or a non-finite position.
+std::vector<LandmarkTarget> match_landmarks(const model::RiggedModel& model,
+                                            const std::vector<std::pair<std::string, Vec3>>& landmarks_mm);
+
+/// Registers `model` to `scan`. Landmarks may be empty (landmark-free initialisation).
+/// Orients the scan's normals (ScanTarget::set_normal_sign) to agree with the template's.
+/// Non-convergence is reported in the summary (termination NotUsable + message), not thrown.
+/// \throws InvalidInput for invalid options.
+FitResult register_template(const model::RiggedModel& model, ScanTarget& scan,
+                            std::vector<LandmarkTarget> landmarks, const FitOptions& options,
+                            const IterationCallback& on_iteration = {});
+
+}  // namespace breastfit::fit

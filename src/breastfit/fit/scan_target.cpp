@@ -1,0 +1,80 @@
+#include "breastfit/fit/scan_target.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "breastfit/core/errors.h"
+#include "breastfit/core/rng.h"
+#include "breastfit/mesh/boundary.h"
+#include "breastfit/mesh/normals.h"
+#include "breastfit/spatial/closest_point_index.h"
+
+namespace breastfit::fit {
+
+ScanTarget::ScanTarget(const TriangleMesh& scan_mm, int num_samples) : mesh_(scan_mm) {
+  if (mesh_.num_faces() == 0) throw InvalidInput("the scan has no triangles");
+  index_ = std::make_unique<spatial::ClosestPointIndex>(mesh_);
+  vertex_normals_ = mesh::vertex_normals(mesh_);
+
+  // Area-uniform deterministic samples on faces that do not touch the open border.
+  const std::vector<bool> border = mesh::boundary_vertices(mesh_);
+  const Index nf = mesh_.num_faces();
+  std::vector<double> cumulative(nf, 0.0);
+  double total = 0.0;
+  for (Index f = 0; f < nf; ++f) {
+    const auto a = mesh_.F(f, 0), b = mesh_.F(f, 1), c = mesh_.F(f, 2);
+    double area = 0.0;
+    if (!border[a] && !border[b] && !border[c]) {
+      const Vec3 e1 = mesh_.V.row(b) - mesh_.V.row(a);
+      const Vec3 e2 = mesh_.V.row(c) - mesh_.V.row(a);
+      area = 0.5 * e1.cross(e2).norm();
+    }
+    total += area;
+    cumulative[f] = total;
+  }
+  if (num_samples > 0 && total > 0) {
+    Rng rng(12345);
+    samples_.resize(num_samples, 3);
+    sample_normals_.resize(num_samples, 3);
+    for (int s = 0; s < num_samples; ++s) {
+      const double u = rng.uniform() * total;
+      const Index f = static_cast<Index>(std::upper_bound(cumulative.begin(), cumulative.end(), u) - cumulative.begin());
+      const Index ff = std::min<Index>(f, nf - 1);
+      double r1 = rng.uniform(), r2 = rng.uniform();
+      if (r1 + r2 > 1) { r1 = 1 - r1; r2 = 1 - r2; }
+      const Vec3 a = mesh_.V.row(mesh_.F(ff, 0));
+      const Vec3 b = mesh_.V.row(mesh_.F(ff, 1));
+      const Vec3 c = mesh_.V.row(mesh_.F(ff, 2));
+      samples_.row(s) = (a + r1 * (b - a) + r2 * (c - a)).transpose();
+      sample_normals_.row(s) = index_->face_normal(ff).transpose();
+    }
+  }
+}
+
+ScanTarget::~ScanTarget() = default;
+ScanTarget::ScanTarget(ScanTarget&&) noexcept = default;
+
+Points ScanTarget::sample_normals() const { return normal_sign_ * sample_normals_; }
+
+std::optional<ScanMatch> ScanTarget::match(const Vec3& q, double max_dist) const {
+  auto cp = index_->closest_within(q, max_dist);
+  if (!cp) return std::nullopt;
+  ScanMatch m;
+  m.point = cp->point;
+  m.normal = normal_sign_ * index_->smooth_normal(*cp);
+  m.sq_dist = cp->sq_dist;
+  m.on_boundary = cp->on_boundary;
+  return m;
+}
+
+ScanMatch ScanTarget::closest(const Vec3& q) const {
+  const auto cp = index_->closest(q);
+  ScanMatch m;
+  m.point = cp.point;
+  m.normal = normal_sign_ * index_->smooth_normal(cp);
+  m.sq_dist = cp.sq_dist;
+  m.on_boundary = cp.on_boundary;
+  return m;
+}
+
+}  // namespace breastfit::fit

@@ -1,0 +1,256 @@
+#include "breastfit/io/landmarks_io.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <set>
+#include <sstream>
+#include <string>
+#include <system_error>
+#include <vector>
+
+#include "breastfit/core/errors.h"
+#include "breastfit/io/detail/text.h"
+#include "breastfit/io/markups.h"
+#include "breastfit/mesh/landmark_names.h"
+
+namespace breastfit::io {
+namespace {
+
+using nlohmann::ordered_json;
+
+std::string read_text(const std::filesystem::path& path) {
+  const std::string name = path.string();
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw IoError(name, "file does not exist");
+  if (std::filesystem::is_directory(path, ec)) throw IoError(name, "is a directory, not a landmark file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw IoError(name, "cannot open for reading");
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  if (in.bad()) throw IoError(name, "read failed");
+  return ss.str();
+}
+
+bool is_blank_text(std::string_view s) {
+  return s.find_first_not_of(" \t\r\n\f\v") == std::string_view::npos;
+}
+
+std::string lower(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+bool ends_with(const std::string& s, std::string_view suffix) {
+  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+std::string_view trim(std::string_view s) {
+  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
+  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.remove_suffix(1);
+  return s;
+}
+
+/// Bare NaN / Infinity / -Infinity outside strings -> quoted, so the JSON parses and the
+/// coordinate check can name the landmark (Python's json module writes these tokens).
+std::string quote_non_finite_tokens(std::string_view text) {
+  if (text.find("NaN") == std::string_view::npos && text.find("Infinity") == std::string_view::npos)
+    return std::string(text);
+  std::string out;
+  out.reserve(text.size() + 16);
+  bool in_string = false;
+  for (size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (in_string) {
+      out += c;
+      if (c == '\\' && i + 1 < text.size()) out += text[++i];
+      else if (c == '"') in_string = false;
+      continue;
+    }
+    if (c == '"') {
+      in_string = true;
+      out += c;
+      continue;
+    }
+    bool replaced = false;
+    for (std::string_view tok : {std::string_view("NaN"), std::string_view("-Infinity"),
+                                 std::string_view("Infinity")}) {
+      if (text.substr(i, tok.size()) == tok) {
+        out += '"';
+        out += tok;
+        out += '"';
+        i += tok.size() - 1;
+        replaced = true;
+        break;
+      }
+    }
+    if (!replaced) out += c;
+  }
+  return out;
+}
+
+/// {name: [x, y, z]} in file order; duplicate keys are kept (validated later).
+std::vector<NamedPoint> parse_plain_json(const ordered_json& doc, const std::vector<std::string>& keys,
+                                         const std::string& source) {
+  if (!doc.is_object())
+    throw IoError(source, "expected a JSON object {\"name\": [x, y, z], ...}");
+  std::vector<NamedPoint> pts;
+  for (const std::string& key : keys) {
+    const ordered_json& v = doc.at(key);
+    if (!v.is_array() || v.size() != 3)
+      throw IoError(source, "landmark '" + key + "': expected [x, y, z], got " + v.dump().substr(0, 60));
+    Vec3 p;
+    for (int i = 0; i < 3; ++i) {
+      const ordered_json& x = v[static_cast<size_t>(i)];
+      if (x.is_number()) {
+        p[i] = x.get<double>();
+      } else if (x.is_string() && (x == "NaN" || x == "Infinity" || x == "-Infinity")) {
+        p[i] = std::numeric_limits<double>::quiet_NaN();
+      } else {
+        throw IoError(source, "landmark '" + key + "': expected [x, y, z] numbers, got " + v.dump().substr(0, 60));
+      }
+    }
+    pts.push_back({key, p});
+  }
+  return pts;
+}
+
+std::vector<NamedPoint> parse_csv(std::string_view text, const std::string& source) {
+  std::vector<NamedPoint> pts;
+  size_t line_no = 0;
+  bool seen_content = false;
+  while (!text.empty()) {
+    const size_t eol = text.find('\n');
+    std::string_view line = text.substr(0, eol);
+    text.remove_prefix(eol == std::string_view::npos ? text.size() : eol + 1);
+    ++line_no;
+    if (line_no == 1 && line.substr(0, 3) == "\xEF\xBB\xBF") line.remove_prefix(3);  // UTF-8 BOM
+    line = trim(line);
+    if (line.empty() || line.front() == '#') continue;
+
+    std::vector<std::string_view> fields;
+    if (line.find(',') != std::string_view::npos) {
+      size_t start = 0;
+      while (true) {
+        const size_t comma = line.find(',', start);
+        fields.push_back(trim(line.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start)));
+        if (comma == std::string_view::npos) break;
+        start = comma + 1;
+      }
+      if (fields.size() == 5 && fields.back().empty()) fields.pop_back();  // trailing comma
+    } else {
+      std::string_view rest = line;
+      for (std::string_view tok = detail::next_token(rest); !tok.empty(); tok = detail::next_token(rest))
+        fields.push_back(tok);
+    }
+    const bool first = !seen_content;
+    seen_content = true;
+    double xyz[3];
+    bool numeric = fields.size() == 4;
+    for (size_t i = 1; numeric && i < 4; ++i) numeric = detail::parse_double(fields[i], xyz[i - 1]);
+    if (!numeric) {
+      if (first && fields.size() == 4) {  // a header such as "name,x,y,z": no numeric field
+        double tmp;
+        bool any_number = false;
+        for (size_t i = 1; i < 4; ++i) any_number = any_number || detail::parse_double(fields[i], tmp);
+        if (!any_number) continue;
+      }
+      const std::string where = "line " + std::to_string(line_no) + ": ";
+      if (fields.size() != 4)
+        throw IoError(source, where + "expected 'name,x,y,z', got " + std::to_string(fields.size()) + " fields");
+      for (size_t i = 1; i < 4; ++i) {
+        double tmp;
+        if (!detail::parse_double(fields[i], tmp))
+          throw IoError(source, where + "'" + std::string(fields[i].substr(0, 32)) + "' is not a number");
+      }
+    }
+    std::string name(fields[0]);
+    if (name.size() >= 2 && name.front() == '"' && name.back() == '"') name = name.substr(1, name.size() - 2);
+    if (name.empty()) throw IoError(source, "line " + std::to_string(line_no) + ": empty landmark name");
+    pts.push_back({name, Vec3(xyz[0], xyz[1], xyz[2])});
+  }
+  return pts;
+}
+
+void validate(const std::vector<NamedPoint>& pts, const std::string& source,
+              const LandmarkReadOptions& options) {
+  if (pts.empty()) throw IoError(source, "contains no landmarks");
+  std::set<std::string> seen;
+  for (const NamedPoint& p : pts) {
+    if (options.require_known_names && !landmark_index(p.name))
+      throw IoError(source, "unknown landmark '" + p.name + "' (expected one of: " + landmark_name_list() + ")");
+    if (!seen.insert(p.name).second) throw IoError(source, "landmark '" + p.name + "' appears more than once");
+    if (!p.position.allFinite())
+      throw IoError(source, "landmark '" + p.name + "' has a non-finite coordinate (NaN or Inf)");
+  }
+}
+
+}  // namespace
+
+LandmarkSet read_landmarks(const std::filesystem::path& path, const LandmarkReadOptions& options) {
+  const std::string source = path.string();
+  const std::string name = lower(path.filename().string());
+  const bool is_json = ends_with(name, ".json");
+  const bool is_csv = ends_with(name, ".csv");
+  if (!is_json && !is_csv)
+    throw IoError(source, "unsupported landmark file extension '" + path.extension().string() +
+                              "' (expected .mrk.json, .json or .csv)");
+  const std::string text = read_text(path);
+  if (is_blank_text(text)) throw IoError(source, "empty file");
+
+  LandmarkSet out;
+  if (is_csv) {
+    out.points = parse_csv(text, source);
+  } else {
+    // Parse once, recording top-level keys in order (to catch duplicates nlohmann would merge).
+    std::vector<std::string> keys;
+    ordered_json doc;
+    try {
+      doc = ordered_json::parse(quote_non_finite_tokens(text),
+                                [&](int depth, ordered_json::parse_event_t event, ordered_json& parsed) {
+                                  if (depth == 1 && event == ordered_json::parse_event_t::key)
+                                    keys.push_back(parsed.get<std::string>());
+                                  return true;
+                                });
+    } catch (const ordered_json::parse_error& e) {
+      std::string what = e.what();
+      const auto pos = what.find("] ");
+      if (pos != std::string::npos) what = what.substr(pos + 2);
+      throw IoError(source, "malformed JSON: " + what);
+    }
+    if (ends_with(name, ".mrk.json") || (doc.is_object() && doc.contains("markups"))) {
+      const MarkupsFile mf = parse_markups(text, source, {.convert_to_mm = false});
+      out.points = mf.markups.points;
+      out.declared_units = mf.units;
+    } else {
+      std::vector<std::string> unique_keys;
+      std::set<std::string> seen;
+      for (const auto& k : keys) {
+        if (!seen.insert(k).second) throw IoError(source, "landmark '" + k + "' appears more than once");
+        unique_keys.push_back(k);
+      }
+      out.points = parse_plain_json(doc, unique_keys, source);
+    }
+  }
+  validate(out.points, source, options);
+  return out;
+}
+
+LandmarkSet landmarks_to_mm(const LandmarkSet& landmarks, mesh::Units undeclared_units) {
+  double factor = mesh::to_mm_factor(undeclared_units);
+  if (landmarks.declared_units) {
+    if (*landmarks.declared_units == "mm") factor = 1.0;
+    else if (*landmarks.declared_units == "m") factor = 1000.0;
+    else throw InvalidInput("landmark units '" + *landmarks.declared_units + "' is not one of mm, m");
+  }
+  LandmarkSet out = landmarks;
+  for (auto& p : out.points) p.position *= factor;
+  out.declared_units = "mm";
+  return out;
+}
+
+}  // namespace breastfit::io

@@ -1,0 +1,328 @@
+#include "breastfit/io/markups.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <system_error>
+
+#include "breastfit/core/errors.h"
+
+namespace breastfit::io {
+namespace {
+
+using nlohmann::json;
+using nlohmann::ordered_json;
+
+std::string read_text(const std::filesystem::path& path) {
+  const std::string name = path.string();
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw IoError(name, "file does not exist");
+  if (std::filesystem::is_directory(path, ec)) throw IoError(name, "is a directory, not a markups file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw IoError(name, "cannot open for reading");
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  if (in.bad()) throw IoError(name, "read failed");
+  return ss.str();
+}
+
+/// Replaces bare NaN / Infinity / -Infinity tokens outside strings by the strings "NaN",
+/// "Infinity", "-Infinity", so that the JSON parses and the coordinate check can name the point.
+std::string quote_non_finite_tokens(std::string_view text) {
+  if (text.find("NaN") == std::string_view::npos && text.find("Infinity") == std::string_view::npos)
+    return std::string(text);
+  std::string out;
+  out.reserve(text.size() + 16);
+  bool in_string = false;
+  for (size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (in_string) {
+      out += c;
+      if (c == '\\' && i + 1 < text.size()) out += text[++i];
+      else if (c == '"') in_string = false;
+      continue;
+    }
+    if (c == '"') {
+      in_string = true;
+      out += c;
+      continue;
+    }
+    bool replaced = false;
+    for (std::string_view tok : {std::string_view("NaN"), std::string_view("-Infinity"),
+                                 std::string_view("Infinity")}) {
+      if (text.substr(i, tok.size()) == tok) {
+        out += '"';
+        out += tok;
+        out += '"';
+        i += tok.size() - 1;
+        replaced = true;
+        break;
+      }
+    }
+    if (!replaced) out += c;
+  }
+  return out;
+}
+
+json parse_json(std::string_view text, const std::string& source) {
+  if (text.find_first_not_of(" \t\r\n") == std::string_view::npos) throw IoError(source, "empty file");
+  try {
+    return json::parse(quote_non_finite_tokens(text));
+  } catch (const json::parse_error& e) {
+    std::string what = e.what();
+    // "[json.exception.parse_error.101] parse error at line 3, column 5: ..." -> drop the prefix
+    const auto pos = what.find("] ");
+    if (pos != std::string::npos) what = what.substr(pos + 2);
+    throw IoError(source, "malformed JSON: " + what);
+  }
+}
+
+enum class VecStatus { Ok, NonFinite, BadShape };
+
+/// A JSON [x, y, z]; quoted "NaN"/"Infinity"/"-Infinity" count as non-finite numbers.
+VecStatus read_vec3(const json& v, Vec3& out) {
+  if (!v.is_array() || v.size() != 3) return VecStatus::BadShape;
+  bool finite = true;
+  for (int i = 0; i < 3; ++i) {
+    const json& x = v[static_cast<size_t>(i)];
+    if (x.is_number()) {
+      out[i] = x.get<double>();
+      if (!std::isfinite(out[i])) finite = false;
+    } else if (x.is_string() && (x == "NaN" || x == "Infinity" || x == "-Infinity")) {
+      out[i] = std::numeric_limits<double>::quiet_NaN();
+      finite = false;
+    } else {
+      return VecStatus::BadShape;
+    }
+  }
+  return finite ? VecStatus::Ok : VecStatus::NonFinite;
+}
+
+/// "mm" or "m" from a coordinateUnits value (string or coded array); absent = "mm".
+std::string units_of(const json& markup, const std::string& source, const std::string& what) {
+  auto it = markup.find("coordinateUnits");
+  if (it == markup.end() || it->is_null()) return "mm";
+  std::string code;
+  if (it->is_string()) {
+    code = it->get<std::string>();
+  } else if (it->is_array() && !it->empty() && (*it)[0].is_string()) {
+    code = (*it)[0].get<std::string>();
+  } else {
+    throw IoError(source, what + ": coordinateUnits must be a string or an array like [\"m\", \"UCUM\", \"meter\"]");
+  }
+  if (code == "mm" || code == "m") return code;
+  throw IoError(source, what + ": unsupported coordinateUnits '" + code + "' (expected mm or m)");
+}
+
+bool is_ras(const json& markup, const std::string& source, const std::string& what) {
+  auto it = markup.find("coordinateSystem");
+  if (it == markup.end() || it->is_null()) return false;
+  if (!it->is_string()) throw IoError(source, what + ": coordinateSystem must be \"LPS\" or \"RAS\"");
+  const std::string cs = it->get<std::string>();
+  if (cs == "LPS") return false;
+  if (cs == "RAS") return true;
+  throw IoError(source, what + ": unsupported coordinateSystem '" + cs + "' (expected LPS or RAS)");
+}
+
+}  // namespace
+
+MarkupsFile parse_markups(std::string_view text, const std::string& source,
+                          const MarkupsReadOptions& options) {
+  const json doc = parse_json(text, source);
+  if (!doc.is_object() || !doc.contains("markups") || !doc["markups"].is_array())
+    throw IoError(source, "not a 3D Slicer markups file (no \"markups\" array)");
+
+  MarkupsFile out;
+  std::optional<std::string> common_units;
+  const json& list = doc["markups"];
+  for (size_t m = 0; m < list.size(); ++m) {
+    const json& mk = list[m];
+    if (!mk.is_object()) throw IoError(source, "markup #" + std::to_string(m + 1) + " is not an object");
+    const std::string type = mk.contains("type") && mk["type"].is_string() ? mk["type"].get<std::string>() : "";
+    const std::string name = mk.contains("name") && mk["name"].is_string() ? mk["name"].get<std::string>() : "";
+    std::string what = "markup ";
+    if (name.empty()) {
+      what += '#';
+      what += std::to_string(m + 1);
+    } else {
+      what += '\'';
+      what += name;
+      what += '\'';
+    }
+    const bool is_points = type == "Fiducial";
+    const bool is_curve = type == "Curve" || type == "ClosedCurve";
+    if (!is_points && !is_curve) {
+      if (type.empty()) throw IoError(source, what + " has no \"type\"");
+      continue;  // Line, Angle, Plane, ROI, ...: not used by breastfit
+    }
+    const bool ras = is_ras(mk, source, what);
+    const std::string units = units_of(mk, source, what);
+    if (!options.convert_to_mm) {
+      if (common_units && *common_units != units)
+        throw IoError(source, "markups declare different coordinateUnits (" + *common_units +
+                                  " and " + units + ")");
+      common_units = units;
+    }
+    const double scale = options.convert_to_mm && units == "m" ? 1000.0 : 1.0;
+
+    std::vector<NamedPoint> pts;
+    if (mk.contains("controlPoints") && !mk["controlPoints"].is_null()) {
+      const json& cps = mk["controlPoints"];
+      if (!cps.is_array()) throw IoError(source, what + ": \"controlPoints\" is not an array");
+      for (size_t i = 0; i < cps.size(); ++i) {
+        const json& cp = cps[i];
+        if (!cp.is_object())
+          throw IoError(source, what + ": control point #" + std::to_string(i + 1) + " is not an object");
+        const std::string label = cp.contains("label") && cp["label"].is_string() ? cp["label"].get<std::string>() : "";
+        std::string pwhat = what + " control point ";
+        if (label.empty()) {
+          pwhat += '#';
+          pwhat += std::to_string(i + 1);
+        } else {
+          pwhat += '\'';
+          pwhat += label;
+          pwhat += '\'';
+        }
+        if (cp.contains("positionStatus") && cp["positionStatus"] == "undefined") continue;
+        if (!cp.contains("position")) throw IoError(source, pwhat + " has no position");
+        Vec3 p;
+        switch (read_vec3(cp["position"], p)) {
+          case VecStatus::BadShape:
+            throw IoError(source, pwhat + ": position is not an array of 3 numbers");
+          case VecStatus::NonFinite:
+            throw IoError(source, pwhat + " has a non-finite coordinate (NaN or Inf)");
+          case VecStatus::Ok:
+            break;
+        }
+        if (ras) {
+          p.x() = -p.x();
+          p.y() = -p.y();
+        }
+        pts.push_back({label, p * scale});
+      }
+    }
+    if (is_points) {
+      for (auto& p : pts) out.markups.points.push_back(std::move(p));
+    } else {
+      Curve c;
+      c.name = name;
+      c.closed = type == "ClosedCurve";
+      c.points.resize(static_cast<Eigen::Index>(pts.size()), 3);
+      for (size_t i = 0; i < pts.size(); ++i) c.points.row(static_cast<Eigen::Index>(i)) = pts[i].position.transpose();
+      out.markups.curves.push_back(std::move(c));
+    }
+  }
+  out.units = options.convert_to_mm ? "mm" : common_units.value_or("mm");
+  return out;
+}
+
+MarkupsFile read_markups_file(const std::filesystem::path& path, const MarkupsReadOptions& options) {
+  return parse_markups(read_text(path), path.string(), options);
+}
+
+Markups read_markups(const std::filesystem::path& path) {
+  return read_markups_file(path, {}).markups;
+}
+
+void MarkupsWriteOptions::validate() const {
+  if (units != "mm" && units != "m")
+    throw InvalidInput("MarkupsWriteOptions.units = '" + units + "' is not one of mm, m");
+  if (coordinate_system != "LPS" && coordinate_system != "RAS")
+    throw InvalidInput("MarkupsWriteOptions.coordinate_system = '" + coordinate_system +
+                       "' is not one of LPS, RAS");
+  if (points_name.empty()) throw InvalidInput("MarkupsWriteOptions.points_name must not be empty");
+}
+
+std::string format_markups(const Markups& markups, const MarkupsWriteOptions& options,
+                           std::string_view input_units) {
+  options.validate();
+  if (input_units != "mm" && input_units != "m")
+    throw InvalidInput("format_markups: input units '" + std::string(input_units) + "' is not one of mm, m");
+  const double in_to_mm = input_units == "m" ? 1000.0 : 1.0;
+  const double mm_to_out = options.units == "m" ? 1e-3 : 1.0;
+  const double scale = in_to_mm * mm_to_out;
+  const bool ras = options.coordinate_system == "RAS";
+  const ordered_json units_json =
+      options.units == "m" ? ordered_json::array({"m", "UCUM", "meter"}) : ordered_json("mm");
+  const ordered_json orientation =
+      ras ? ordered_json::array({1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0})
+          : ordered_json::array({-1.0, -0.0, -0.0, -0.0, -1.0, -0.0, 0.0, 0.0, 1.0});
+
+  auto control_point = [&](size_t i, const std::string& label, const Vec3& p_lps,
+                           const std::string& what) {
+    if (!p_lps.allFinite()) throw InvalidInput(what + " has a non-finite coordinate (NaN or Inf)");
+    Vec3 p = p_lps * scale;
+    if (ras) {
+      p.x() = -p.x();
+      p.y() = -p.y();
+    }
+    ordered_json cp;
+    cp["id"] = std::to_string(i + 1);
+    cp["label"] = label;
+    cp["description"] = "";
+    cp["associatedNodeID"] = "";
+    cp["position"] = ordered_json::array({p.x(), p.y(), p.z()});
+    cp["orientation"] = orientation;
+    cp["selected"] = true;
+    cp["locked"] = false;
+    cp["visibility"] = true;
+    cp["positionStatus"] = "defined";
+    return cp;
+  };
+  auto markup = [&](const std::string& type, const std::string& name, ordered_json cps) {
+    ordered_json m;
+    m["type"] = type;
+    m["name"] = name;
+    m["coordinateSystem"] = options.coordinate_system;
+    m["coordinateUnits"] = units_json;
+    m["locked"] = false;
+    m["fixedNumberOfControlPoints"] = false;
+    m["labelFormat"] = "%N-%d";
+    m["lastUsedControlPointNumber"] = cps.size();
+    m["controlPoints"] = std::move(cps);
+    m["measurements"] = ordered_json::array();
+    return m;
+  };
+
+  ordered_json doc;
+  doc["@schema"] =
+      "https://raw.githubusercontent.com/slicer/slicer/master/Modules/Loadable/Markups/Resources/"
+      "Schema/markups-schema-v1.0.3.json#";
+  doc["markups"] = ordered_json::array();
+  if (!markups.points.empty()) {
+    ordered_json cps = ordered_json::array();
+    for (size_t i = 0; i < markups.points.size(); ++i)
+      cps.push_back(control_point(i, markups.points[i].name, markups.points[i].position,
+                                  "point '" + markups.points[i].name + "'"));
+    doc["markups"].push_back(markup("Fiducial", options.points_name, std::move(cps)));
+  }
+  for (const Curve& c : markups.curves) {
+    ordered_json cps = ordered_json::array();
+    for (Eigen::Index i = 0; i < c.points.rows(); ++i)
+      cps.push_back(control_point(static_cast<size_t>(i), c.name + "-" + std::to_string(i + 1),
+                                  c.points.row(i).transpose(),
+                                  "curve '" + c.name + "' point " + std::to_string(i + 1)));
+    doc["markups"].push_back(markup(c.closed ? "ClosedCurve" : "Curve", c.name, std::move(cps)));
+  }
+  return doc.dump(1) + "\n";
+}
+
+void write_markups(const std::filesystem::path& path, const Markups& markups,
+                   const MarkupsWriteOptions& options) {
+  const std::string text = format_markups(markups, options);
+  const std::string name = path.string();
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw IoError(name, "is a directory, cannot write markups there");
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  if (!out) throw IoError(name, "cannot open for writing");
+  out.write(text.data(), static_cast<std::streamsize>(text.size()));
+  out.flush();
+  if (!out) throw IoError(name, "write failed");
+}
+
+}  // namespace breastfit::io

@@ -1,0 +1,72 @@
+#include "breastfit/pipeline/register_outputs.h"
+
+#include <fstream>
+#include <system_error>
+
+#include <nlohmann/json.hpp>
+
+#include "breastfit/core/errors.h"
+#include "breastfit/io/io.h"
+#include "breastfit/io/markups.h"
+#include "breastfit/model/params_json.h"
+
+namespace breastfit::pipeline {
+namespace fs = std::filesystem;
+namespace {
+
+bool same_file(const fs::path& a, const fs::path& b) {
+  std::error_code ec;
+  if (!fs::exists(a, ec) || !fs::exists(b, ec)) return false;
+  return fs::equivalent(a, b, ec);
+}
+
+void write_json(const fs::path& path, const nlohmann::json& j) {
+  std::ofstream f(path);
+  if (!f) throw IoError(path.string(), "cannot open for writing");
+  f << j.dump(1) << "\n";
+  if (!f) throw IoError(path.string(), "write failed (disk full?)");
+}
+
+}  // namespace
+
+std::vector<std::string> register_output_names() {
+  return {"fitted.ply", "landmarks.mrk.json", "drawings.mrk.json", "params.json", "report.json"};
+}
+
+void check_output_dir(const fs::path& dir, bool force, const std::vector<fs::path>& protected_paths) {
+  std::error_code ec;
+  if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
+    throw IoError(dir.string(), "exists and is not a directory");
+  for (const auto& name : register_output_names()) {
+    const fs::path p = dir / name;
+    for (const auto& in : protected_paths)
+      if (same_file(p, in)) throw IoError(p.string(), "is one of the inputs: choose another --out");
+    if (!force && fs::exists(p, ec))
+      throw IoError(p.string(), "already exists (use --force to replace the outputs)");
+  }
+}
+
+void write_register_outputs(const fs::path& dir, const RegisterResult& r, const model::RiggedModel& model, bool force,
+                            const std::vector<fs::path>& protected_paths) {
+  check_output_dir(dir, force, protected_paths);
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) throw IoError(dir.string(), "cannot create directory: " + ec.message());
+
+  const double from_mm = 1.0 / r.scan.to_mm;
+  TriangleMesh fitted = r.fitted_mm;
+  fitted.V *= from_mm;
+  io::write_mesh(dir / "fitted.ply", fitted);
+
+  io::MarkupsWriteOptions mo;
+  mo.units = r.scan.units == mesh::Units::Metres ? "m" : "mm";
+  io::write_markups(dir / "landmarks.mrk.json", r.model_landmarks_mm, mo);
+  io::write_markups(dir / "drawings.mrk.json", r.drawings_mm, mo);
+
+  nlohmann::json params = model::params_to_json(model, r.fit.params);
+  params["units_note"] = "translations in mm in the scan frame (converted from the file's units)";
+  write_json(dir / "params.json", params);
+  write_json(dir / "report.json", r.report());
+}
+
+}  // namespace breastfit::pipeline

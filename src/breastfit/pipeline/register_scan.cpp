@@ -1,0 +1,102 @@
+#include "breastfit/pipeline/register_scan.h"
+
+#include <cmath>
+#include <cstdio>
+
+#include <nlohmann/json.hpp>
+
+#include "breastfit/core/errors.h"
+#include "breastfit/core/timer.h"
+#include "breastfit/fit/scan_target.h"
+#include "breastfit/mesh/landmark_names.h"
+#include "breastfit/mesh/units.h"
+
+namespace breastfit::pipeline {
+namespace {
+
+Markups evaluate_landmarks(const model::RiggedModel& model, const Points& V) {
+  Markups m;
+  for (const auto& lm : model.landmarks) m.points.push_back({lm.name, lm.point.position(V, model.rest.F)});
+  return m;
+}
+
+Markups evaluate_drawings(const model::RiggedModel& model, const Points& V) {
+  Markups m;
+  for (const auto& d : model.drawings) {
+    Curve c;
+    c.name = d.name;
+    c.closed = d.closed;
+    c.points.resize(static_cast<Index>(d.points.size()), 3);
+    for (size_t i = 0; i < d.points.size(); ++i) c.points.row(i) = d.points[i].position(V, model.rest.F).transpose();
+    m.curves.push_back(std::move(c));
+  }
+  return m;
+}
+
+std::string fmt(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.1f", v);
+  return buf;
+}
+
+}  // namespace
+
+RegisterResult register_scan(const RegisterRequest& req, const fit::IterationCallback& on_iteration) {
+  if (!req.scan || !req.model) throw InvalidInput("register_scan: scan and model are required");
+  RegisterResult out;
+  out.scan = prepare_scan(*req.scan, req.scan_name, req.units);
+  out.warnings = out.scan.warnings;
+  fit::FitOptions options = req.options;
+  if (out.scan.was_point_cloud) options.correspondences.reject_boundary = false;
+
+  std::vector<std::pair<std::string, Vec3>> landmarks_mm;
+  if (req.landmarks) landmarks_mm = prepare_landmarks(*req.landmarks, out.scan.units);
+  std::vector<fit::LandmarkTarget> targets = fit::match_landmarks(*req.model, landmarks_mm);
+  if (req.landmarks && targets.size() < kLandmarkNames.size()) {
+    std::string missing;
+    for (auto name : kLandmarkNames)
+      if (!req.landmarks->find(name)) missing += std::string(missing.empty() ? "" : ", ") + std::string(name);
+    out.warnings.push_back("landmarks missing (the fit uses those present): " + missing);
+  }
+
+  Timer timer;  // from scan and landmarks in memory to fitted parameters
+  fit::ScanTarget scan(out.scan.mesh_mm, options.correspondences.reverse_samples);
+  out.fit = fit::register_template(*req.model, scan, targets, options, on_iteration);
+  out.time_s = timer.seconds();
+
+  for (const auto& w : out.fit.summary.warnings) out.warnings.push_back(w);
+  for (const auto& t : out.fit.landmarks) {
+    const double d = std::sqrt(scan.closest(t.position).sq_dist);
+    if (d > options.landmark_warning_mm)
+      out.warnings.push_back("landmark '" + t.name + "' is " + fmt(d) + " mm away from the scan surface");
+  }
+  out.fitted_mm.V = out.fit.vertices;
+  out.fitted_mm.F = req.model->rest.F;
+  out.model_landmarks_mm = evaluate_landmarks(*req.model, out.fit.vertices);
+  out.drawings_mm = evaluate_drawings(*req.model, out.fit.vertices);
+  out.surface = metrics::distance_stats(metrics::surface_distances(out.fit.vertices, scan, !out.scan.was_point_cloud));
+  out.landmarks = metrics::landmark_errors(*req.model, out.fit.vertices, out.fit.landmarks);
+  return out;
+}
+
+nlohmann::json RegisterResult::report() const {
+  const auto& s = fit.summary;
+  nlohmann::json per_landmark = nlohmann::json::object();
+  for (size_t i = 0; i < landmarks.names.size(); ++i) per_landmark[landmarks.names[i]] = landmarks.distances_mm[i];
+  nlohmann::json j;
+  j["time_s"] = time_s;
+  j["status"] = usable() ? "ok" : "not_converged";
+  j["units"] = std::string(mesh::units_name(scan.units));
+  j["point_cloud"] = scan.was_point_cloud;
+  j["iterations"] = s.iterations.size();
+  j["stopping_reason"] = s.message;
+  j["termination"] = fit::to_string(s.termination);
+  j["solver"] = fit::to_json(s);
+  j["table1"] = {{"surface_mm", metrics::to_json(surface)},
+                 {"landmarks_mm", metrics::to_json(landmarks.stats)},
+                 {"landmark_errors_mm", per_landmark}};
+  j["warnings"] = warnings;
+  return j;
+}
+
+}  // namespace breastfit::pipeline

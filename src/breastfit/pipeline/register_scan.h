@@ -1,0 +1,48 @@
+#pragma once
+/// \file The whole registration of one scan in memory: prepare the scan and landmarks, build the
+/// index, fit, and evaluate the fitted template's landmarks and drawings and the paper's errors.
+/// What `breastfit register`, `bench` and `demo` run.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "breastfit/fit/fit_options.h"
+#include "breastfit/fit/registration.h"
+#include "breastfit/mesh/landmarks.h"
+#include "breastfit/metrics/fit_errors.h"
+#include "breastfit/model/rigged_model.h"
+#include "breastfit/pipeline/scan_input.h"
+
+namespace breastfit::pipeline {
+
+struct RegisterRequest {
+  const TriangleMesh* scan = nullptr;          ///< as read: file units, scanner frame
+  std::string scan_name = "scan";              ///< for messages
+  std::optional<mesh::Units> units;            ///< forced units (nullopt: detect)
+  std::optional<LandmarkSet> landmarks;        ///< as read (nullopt: none given)
+  const model::RiggedModel* model = nullptr;   ///< the template
+  fit::FitOptions options;
+};
+
+struct RegisterResult {
+  PreparedScan scan;                    ///< the scan in mm (and its units)
+  fit::FitResult fit;                   ///< parameters, posed vertices (mm), solver summary
+  TriangleMesh fitted_mm;               ///< the posed template, mm, scanner frame
+  Markups model_landmarks_mm;           ///< the template's landmarks on the fitted model
+  Markups drawings_mm;                  ///< the template's drawings on the fitted model
+  metrics::DistanceStats surface;       ///< paper's surface error (fitted vertices → scan)
+  metrics::LandmarkErrors landmarks;    ///< model landmarks vs input landmarks
+  std::vector<std::string> warnings;    ///< everything the user should know
+  double time_s = 0;                    ///< scan + landmarks in memory → fitted parameters (index build included)
+
+  bool usable() const { return fit.summary.usable(); }
+  /// report.json content.
+  nlohmann::json report() const;
+};
+
+/// Runs the registration. \throws InvalidInput for bad scans, landmarks or options.
+RegisterResult register_scan(const RegisterRequest& request, const fit::IterationCallback& on_iteration = {});
+
+}  // namespace breastfit::pipeline

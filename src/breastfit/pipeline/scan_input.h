@@ -1,0 +1,32 @@
+#pragma once
+/// \file A scan as the user gave it, made ready for registration: units resolved and converted to
+/// millimetres, checked to be an upper torso, point clouds turned into oriented splats.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "breastfit/mesh/landmarks.h"
+#include "breastfit/mesh/triangle_mesh.h"
+#include "breastfit/mesh/units.h"
+
+namespace breastfit::pipeline {
+
+struct PreparedScan {
+  TriangleMesh mesh_mm;          ///< triangles in mm (splats for a point cloud)
+  mesh::Units units = mesh::Units::Millimetres;  ///< the file's units
+  double to_mm = 1.0;            ///< file units → mm
+  bool was_point_cloud = false;
+  std::vector<std::string> warnings;
+};
+
+/// Converts `scan` (file units) to mm and validates it.
+/// \param name       used in error messages (the file name)
+/// \param requested  forced units, or nullopt to detect them from the extent
+/// \throws InvalidInput for an empty scan, non-finite coordinates, or an extent that is not an
+///         upper torso (150–1500 mm after conversion), each naming the file.
+PreparedScan prepare_scan(const TriangleMesh& scan, const std::string& name, std::optional<mesh::Units> requested);
+
+/// Landmarks converted to mm (declared units, else the scan's), checked for NaN.
+std::vector<std::pair<std::string, Vec3>> prepare_landmarks(const LandmarkSet& landmarks, mesh::Units scan_units);
+
+}  // namespace breastfit::pipeline

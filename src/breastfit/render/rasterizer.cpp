@@ -1,0 +1,380 @@
+#include "breastfit/render/rasterizer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <utility>
+
+#include "breastfit/core/errors.h"
+
+namespace breastfit::render {
+
+namespace {
+
+constexpr std::uint32_t kVisibleInk = std::numeric_limits<std::uint32_t>::max();
+constexpr float kEmpty = std::numeric_limits<float>::infinity();
+
+Rgb scale_rgb(const Vec3& c) {
+  auto ch = [](double v) { return static_cast<std::uint8_t>(std::clamp(std::lround(v), 0L, 255L)); };
+  return {ch(c[0]), ch(c[1]), ch(c[2])};
+}
+
+Vec3 to_vec(Rgb c) { return Vec3(c.r, c.g, c.b); }
+
+/// Lights and viewing direction in world coordinates.
+struct Lighting {
+  Vec3 headlight;  // towards the camera
+  Vec3 key;        // towards the key light (upper left of the viewer)
+};
+
+Lighting make_lighting(const Camera& cam) {
+  const Vec3 f = cam.forward(), r = cam.right(), u = cam.true_up();
+  return {-f, (-0.8 * f + 0.7 * u - 0.5 * r).normalized()};
+}
+
+/// Shaded colour of a surface sample whose normal `n` already faces the viewer.
+Vec3 shade(const Vec3& base, const Vec3& n, bool front, const Lighting& light, const SurfaceStyle& s) {
+  const double d1 = std::max(0.0, n.dot(light.headlight));
+  const double d2 = std::max(0.0, n.dot(light.key));
+  const double intensity = s.ambient + s.headlight * d1 + s.key_light * d2;
+  if (!front) {
+    const Vec3 tinted = 0.2 * base + 0.8 * to_vec(s.back_colour);
+    return tinted * (intensity * s.back_brightness);
+  }
+  const double spec = s.specular > 0 ? s.specular * std::pow(d1, s.shininess) : 0.0;
+  return base * intensity + Vec3::Constant(255.0 * spec);
+}
+
+Points area_weighted_normals(const Points& V, const Triangles& F) {
+  Points N = Points::Zero(V.rows(), 3);
+  for (Eigen::Index f = 0; f < F.rows(); ++f) {
+    const Vec3 a = V.row(F(f, 0)), b = V.row(F(f, 1)), c = V.row(F(f, 2));
+    const Vec3 n = (b - a).cross(c - a);  // |n| = 2 × area
+    for (int k = 0; k < 3; ++k) N.row(F(f, k)) += n.transpose();
+  }
+  for (Eigen::Index i = 0; i < N.rows(); ++i) {
+    const double len = N.row(i).norm();
+    if (len > 0) N.row(i) /= len;
+  }
+  return N;
+}
+
+/// Pixels whose centres (i + 0.5) lie in [a, b], clipped to [0, n − 1]: [lo, hi], empty when
+/// lo > hi (also for non-finite bounds).
+struct Span {
+  int lo = 1;
+  int hi = 0;
+};
+Span pixel_span(double a, double b, int n) {
+  if (!(std::isfinite(a) && std::isfinite(b))) return {};
+  const double lo = std::max(0.0, std::ceil(a - 0.5));
+  const double hi = std::min(n - 1.0, std::floor(b - 0.5));
+  if (lo > hi) return {};
+  return {static_cast<int>(lo), static_cast<int>(hi)};
+}
+
+/// floor(v) as an int, saturated to [−1, 2^30] (non-finite → −1), for inside-the-image tests.
+int pixel_index(double v) {
+  if (!std::isfinite(v)) return -1;
+  return static_cast<int>(std::clamp(std::floor(v), -1.0, 1073741824.0));
+}
+
+double edge(const Projected& a, const Projected& b, double px, double py) {
+  return (b.x - a.x) * (py - a.y) - (b.y - a.y) * (px - a.x);
+}
+
+}  // namespace
+
+void RasterOptions::validate() const {
+  if (width < 1 || height < 1 || width > 16384 || height > 16384)
+    throw InvalidInput("RasterOptions: width and height must be in [1, 16384], got " +
+                       std::to_string(width) + "x" + std::to_string(height));
+  if (supersample < 1 || supersample > 4)
+    throw InvalidInput("RasterOptions: supersample must be in [1, 4], got " + std::to_string(supersample));
+  if (!(depth_bias >= 0) || !std::isfinite(depth_bias))
+    throw InvalidInput("RasterOptions: depth_bias must be finite and >= 0, got " + std::to_string(depth_bias));
+  if (!(hidden_alpha > 0 && hidden_alpha <= 1))
+    throw InvalidInput("RasterOptions: hidden_alpha must be in (0, 1], got " + std::to_string(hidden_alpha));
+}
+
+Rasterizer::Rasterizer(const Camera& camera, const RasterOptions& options)
+    : camera_(camera), options_(options) {
+  camera_.validate();
+  options_.validate();
+  w_ = options_.width * options_.supersample;
+  h_ = options_.height * options_.supersample;
+  colour_ = Image(w_, h_, options_.background);
+  depth_.assign(static_cast<size_t>(w_) * h_, kEmpty);
+  ink_.assign(static_cast<size_t>(w_) * h_, 0);
+}
+
+Projected Rasterizer::project_internal(const Vec3& p) const { return camera_.project(p, w_, h_); }
+
+Projected Rasterizer::project(const Vec3& p) const {
+  return camera_.project(p, options_.width, options_.height);
+}
+
+void Rasterizer::next_call() {
+  ++call_id_;
+  if (call_id_ == kVisibleInk || call_id_ == 0) call_id_ = 1;
+}
+
+void Rasterizer::draw_mesh(const TriangleMesh& mesh, const SurfaceStyle& style) {
+  draw_mesh(mesh.V, mesh.F, mesh.N, mesh.C, style);
+}
+
+void Rasterizer::draw_mesh(const Points& V, const Triangles& F, const Points& N, const Colors& C,
+                           const SurfaceStyle& style) {
+  const Eigen::Index nv = V.rows();
+  if (N.rows() != 0 && N.rows() != nv)
+    throw InvalidInput("draw_mesh: " + std::to_string(N.rows()) + " normals for " + std::to_string(nv) + " vertices");
+  if (C.rows() != 0 && C.rows() != nv)
+    throw InvalidInput("draw_mesh: " + std::to_string(C.rows()) + " colours for " + std::to_string(nv) + " vertices");
+  if (F.rows() > 0 && (F.minCoeff() < 0 || F.maxCoeff() >= nv))
+    throw InvalidInput("draw_mesh: a triangle index is outside [0, " + std::to_string(nv) + ")");
+  if (nv == 0) return;
+
+  const Lighting light = make_lighting(camera_);
+  const bool perspective = camera_.projection == Projection::Perspective;
+  const Vec3 f = camera_.forward();
+  const Vec3 uniform = to_vec(style.colour);
+  auto base_colour = [&](Index i) -> Vec3 {
+    return C.rows() ? Vec3(C(i, 0), C(i, 1), C(i, 2)) : uniform;
+  };
+
+  std::vector<Projected> P(static_cast<size_t>(nv));
+  for (Eigen::Index i = 0; i < nv; ++i) P[i] = project_internal(V.row(i).transpose());
+
+  if (F.rows() == 0) {  // point cloud: shaded splats that write depth
+    const double r = std::max(0.5, style.point_radius_px * options_.supersample);
+    for (Eigen::Index i = 0; i < nv; ++i) {
+      const Projected& p = P[i];
+      if (perspective && p.depth <= camera_.near) continue;
+      Vec3 n = N.rows() ? Vec3(N.row(i).transpose()) : Vec3(-f);
+      bool front = true;
+      if (n.squaredNorm() == 0) n = -f;
+      n.normalize();
+      if (n.dot(light.headlight) < 0) {
+        n = -n;
+        front = false;
+      }
+      const Rgb c = scale_rgb(shade(base_colour(static_cast<Index>(i)), n, front, light, style));
+      const Span xs = pixel_span(p.x - r, p.x + r, w_), ys = pixel_span(p.y - r, p.y + r, h_);
+      if (!std::isfinite(p.depth)) continue;
+      for (int y = ys.lo; y <= ys.hi; ++y)
+        for (int x = xs.lo; x <= xs.hi; ++x) {
+          const double dx = x + 0.5 - p.x, dy = y + 0.5 - p.y;
+          if (dx * dx + dy * dy > r * r) continue;
+          const size_t idx = static_cast<size_t>(y) * w_ + x;
+          if (p.depth < depth_[idx]) {
+            depth_[idx] = static_cast<float>(p.depth);
+            colour_.set(x, y, c);
+          }
+        }
+    }
+    return;
+  }
+
+  const Points normals = (style.smooth && N.rows() == 0) ? area_weighted_normals(V, F) : Points();
+  const Points& vn = N.rows() ? N : normals;
+
+  for (Eigen::Index t = 0; t < F.rows(); ++t) {
+    const Index i0 = F(t, 0), i1 = F(t, 1), i2 = F(t, 2);
+    const Projected &p0 = P[i0], &p1 = P[i1], &p2 = P[i2];
+    if (perspective && (p0.depth <= camera_.near || p1.depth <= camera_.near || p2.depth <= camera_.near))
+      continue;
+    const Vec3 v0 = V.row(i0), v1 = V.row(i1), v2 = V.row(i2);
+    Vec3 ng = (v1 - v0).cross(v2 - v0);
+    if (!(ng.squaredNorm() > 0)) continue;
+    ng.normalize();
+    const Vec3 to_eye = perspective ? Vec3(camera_.eye - v0) : Vec3(-f);
+    const bool front = ng.dot(to_eye) > 0;
+    const double area = edge(p0, p1, p2.x, p2.y);
+    if (!(std::abs(area) > 1e-12)) continue;
+
+    const Span xs = pixel_span(std::min({p0.x, p1.x, p2.x}), std::max({p0.x, p1.x, p2.x}), w_);
+    const Span ys = pixel_span(std::min({p0.y, p1.y, p2.y}), std::max({p0.y, p1.y, p2.y}), h_);
+    if (xs.lo > xs.hi || ys.lo > ys.hi) continue;
+    if (!(std::isfinite(p0.depth) && std::isfinite(p1.depth) && std::isfinite(p2.depth))) continue;
+
+    const double w0 = perspective ? 1.0 / p0.depth : 1.0;
+    const double w1 = perspective ? 1.0 / p1.depth : 1.0;
+    const double w2 = perspective ? 1.0 / p2.depth : 1.0;
+    const Vec3 c0 = base_colour(i0), c1 = base_colour(i1), c2 = base_colour(i2);
+    Vec3 n0 = ng, n1 = ng, n2 = ng;
+    if (style.smooth) {
+      n0 = vn.row(i0);
+      n1 = vn.row(i1);
+      n2 = vn.row(i2);
+    }
+
+    for (int y = ys.lo; y <= ys.hi; ++y) {
+      const double py = y + 0.5;
+      for (int x = xs.lo; x <= xs.hi; ++x) {
+        const double px = x + 0.5;
+        double b0 = edge(p1, p2, px, py) / area;
+        double b1 = edge(p2, p0, px, py) / area;
+        double b2 = edge(p0, p1, px, py) / area;
+        if (b0 < 0 || b1 < 0 || b2 < 0) continue;
+        // Perspective-correct barycentrics (identity for orthographic).
+        b0 *= w0;
+        b1 *= w1;
+        b2 *= w2;
+        const double sum = b0 + b1 + b2;
+        b0 /= sum;
+        b1 /= sum;
+        b2 /= sum;
+        const double depth = b0 * p0.depth + b1 * p1.depth + b2 * p2.depth;
+        const size_t idx = static_cast<size_t>(y) * w_ + x;
+        if (!(depth < depth_[idx])) continue;
+        Vec3 n = b0 * n0 + b1 * n1 + b2 * n2;
+        if (!(n.squaredNorm() > 0)) n = ng;
+        n.normalize();
+        if (!front) n = -n;
+        // Interpolated normals may turn away at silhouettes; keep them facing the viewer.
+        const Vec3 view = perspective ? Vec3((camera_.eye - (b0 * v0 + b1 * v1 + b2 * v2)).normalized()) : Vec3(-f);
+        if (n.dot(view) < 0) n = (n - 1.0 * n.dot(view) * view).normalized();
+        const Vec3 base = b0 * c0 + b1 * c1 + b2 * c2;
+        depth_[idx] = static_cast<float>(depth);
+        colour_.set(x, y, scale_rgb(shade(base, n, front, light, style)));
+      }
+    }
+  }
+}
+
+bool Rasterizer::overlay_visible_at(int x, int y, double depth) const {
+  const float surface = depth_[static_cast<size_t>(y) * w_ + x];
+  return !(depth - options_.depth_bias > surface);
+}
+
+void Rasterizer::paint_overlay(int x, int y, Rgb colour, bool visible, double alpha, bool allow_hidden) {
+  const size_t idx = static_cast<size_t>(y) * w_ + x;
+  if (visible) {
+    if (alpha >= 1.0) {
+      colour_.set(x, y, colour);
+      ink_[idx] = kVisibleInk;
+    } else if (ink_[idx] != call_id_) {
+      colour_.set(x, y, mix(colour_.at(x, y), colour, alpha));
+      ink_[idx] = call_id_;
+    }
+    return;
+  }
+  if (!allow_hidden || !options_.show_hidden_overlays) return;
+  if (ink_[idx] == kVisibleInk || ink_[idx] == call_id_) return;
+  colour_.set(x, y, mix(colour_.at(x, y), colour, alpha * options_.hidden_alpha));
+  ink_[idx] = call_id_;
+}
+
+void Rasterizer::draw_segment(const Projected& a, const Projected& b, double radius, Rgb colour,
+                              double alpha, bool allow_hidden) {
+  const bool perspective = camera_.projection == Projection::Perspective;
+  if (perspective && (a.depth <= camera_.near || b.depth <= camera_.near)) return;
+  if (!(std::isfinite(a.depth) && std::isfinite(b.depth))) return;
+  const Span xs = pixel_span(std::min(a.x, b.x) - radius, std::max(a.x, b.x) + radius, w_);
+  const Span ys = pixel_span(std::min(a.y, b.y) - radius, std::max(a.y, b.y) + radius, h_);
+  const double dx = b.x - a.x, dy = b.y - a.y;
+  const double len2 = dx * dx + dy * dy;
+  for (int y = ys.lo; y <= ys.hi; ++y)
+    for (int x = xs.lo; x <= xs.hi; ++x) {
+      const double px = x + 0.5 - a.x, py = y + 0.5 - a.y;
+      const double t = len2 > 0 ? std::clamp((px * dx + py * dy) / len2, 0.0, 1.0) : 0.0;
+      const double ex = px - t * dx, ey = py - t * dy;
+      if (ex * ex + ey * ey > radius * radius) continue;
+      const double depth =
+          perspective ? 1.0 / ((1.0 - t) / a.depth + t / b.depth) : (1.0 - t) * a.depth + t * b.depth;
+      paint_overlay(x, y, colour, overlay_visible_at(x, y, depth), alpha, allow_hidden);
+    }
+}
+
+void Rasterizer::draw_polyline(const Points& P, bool closed, const LineStyle& style) {
+  if (!(style.width_px > 0)) throw InvalidInput("draw_polyline: width_px must be > 0");
+  if (P.rows() == 0) return;
+  next_call();
+  const double radius = 0.5 * style.width_px * options_.supersample;
+  std::vector<Projected> q(static_cast<size_t>(P.rows()));
+  for (Eigen::Index i = 0; i < P.rows(); ++i) q[i] = project_internal(P.row(i).transpose());
+  if (q.size() == 1) {
+    draw_segment(q[0], q[0], radius, style.colour, 1.0, true);
+    return;
+  }
+  for (size_t i = 0; i + 1 < q.size(); ++i) draw_segment(q[i], q[i + 1], radius, style.colour, 1.0, true);
+  if (closed && q.size() > 2) draw_segment(q.back(), q.front(), radius, style.colour, 1.0, true);
+}
+
+void Rasterizer::draw_point(const Vec3& p, const PointStyle& style) {
+  if (!(style.radius > 0)) throw InvalidInput("draw_point: radius must be > 0");
+  const Projected c = project_internal(p);
+  if (camera_.projection == Projection::Perspective && c.depth <= camera_.near) return;
+  next_call();
+  const int ss = options_.supersample;
+  const double r_out = style.unit == SizeUnit::Pixels
+                           ? style.radius
+                           : style.radius / camera_.world_per_pixel(c.depth, options_.height);
+  const double r = std::max(0.75, r_out * ss);
+  if (!(std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.depth))) return;
+  const int cx = pixel_index(c.x), cy = pixel_index(c.y);
+  const bool inside = cx >= 0 && cy >= 0 && cx < w_ && cy < h_;
+  const bool visible = !inside || overlay_visible_at(cx, cy, c.depth);
+  const double rim = std::max(1.0, 0.2 * r);
+  const Vec3 base = to_vec(style.colour);
+  const Rgb rim_colour = mix(style.colour, {0, 0, 0}, 0.6);
+  const Span xs = pixel_span(c.x - r, c.x + r, w_), ys = pixel_span(c.y - r, c.y + r, h_);
+  for (int y = ys.lo; y <= ys.hi; ++y)
+    for (int x = xs.lo; x <= xs.hi; ++x) {
+      const double dx = x + 0.5 - c.x, dy = y + 0.5 - c.y;
+      const double d = std::sqrt(dx * dx + dy * dy);
+      if (d > r) continue;
+      Rgb colour = rim_colour;
+      if (d <= r - rim) {
+        // Shade the disc as a sphere lit from the upper left.
+        const double ri = r - rim;
+        const double nx = dx / ri, ny = dy / ri;
+        const double nz = std::sqrt(std::max(0.0, 1.0 - nx * nx - ny * ny));
+        const double lambert = std::max(0.0, (-0.4 * nx - 0.4 * ny + 0.82 * nz));
+        const double highlight = std::pow(lambert, 12.0) * 0.45;
+        colour = scale_rgb(base * (0.55 + 0.45 * lambert) + Vec3::Constant(255.0 * highlight));
+      }
+      paint_overlay(x, y, colour, visible, 1.0, true);
+    }
+}
+
+void Rasterizer::draw_wireframe(const Points& V, const Triangles& F, const WireframeStyle& style) {
+  if (!(style.alpha > 0 && style.alpha <= 1)) throw InvalidInput("draw_wireframe: alpha must be in (0, 1]");
+  if (!(style.width_px > 0)) throw InvalidInput("draw_wireframe: width_px must be > 0");
+  if (F.rows() == 0) return;
+  if (F.minCoeff() < 0 || F.maxCoeff() >= V.rows())
+    throw InvalidInput("draw_wireframe: a triangle index is outside the vertex range");
+  next_call();
+  std::vector<std::pair<Index, Index>> edges;
+  edges.reserve(static_cast<size_t>(F.rows()) * 3);
+  for (Eigen::Index t = 0; t < F.rows(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const Index a = F(t, k), b = F(t, (k + 1) % 3);
+      edges.emplace_back(std::min(a, b), std::max(a, b));
+    }
+  std::sort(edges.begin(), edges.end());
+  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  std::vector<Projected> q(static_cast<size_t>(V.rows()));
+  for (Eigen::Index i = 0; i < V.rows(); ++i) q[i] = project_internal(V.row(i).transpose());
+  const double radius = 0.5 * style.width_px * options_.supersample;
+  for (const auto& [a, b] : edges) draw_segment(q[a], q[b], radius, style.colour, style.alpha, false);
+}
+
+bool Rasterizer::is_visible(const Vec3& p) const {
+  const Projected c = project_internal(p);
+  if (camera_.projection == Projection::Perspective && c.depth <= camera_.near) return false;
+  const int x = pixel_index(c.x), y = pixel_index(c.y);
+  if (x < 0 || y < 0 || x >= w_ || y >= h_) return false;
+  return overlay_visible_at(x, y, c.depth);
+}
+
+double Rasterizer::surface_coverage() const {
+  size_t covered = 0;
+  for (float d : depth_) covered += d < kEmpty ? 1 : 0;
+  return static_cast<double>(covered) / static_cast<double>(depth_.size());
+}
+
+Image Rasterizer::resolve() const { return colour_.downsampled(options_.supersample); }
+
+}  // namespace breastfit::render

@@ -1,0 +1,393 @@
+#include "breastfit/spatial/closest_point_index.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <string>
+#include <utility>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
+#include "breastfit/core/errors.h"
+#include "breastfit/spatial/detail/bvh.h"
+#include "breastfit/spatial/detail/point_triangle_kernel.h"
+#include "breastfit/spatial/detail/triangle_tables.h"
+
+namespace breastfit::spatial {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+/// Leaves hold at most this many triangles (BVH build option).
+constexpr int kMaxLeafSize = 4;
+
+/// A leaf's data is one self-contained block of whole 64-byte lines: this header, then the
+/// leaf's distinct vertices (3 doubles each). Compared with a vertex-index indirection this
+/// needs no second memory hop, and compared with 3 corners per triangle it stores shared
+/// corners once (the query cost on a large mesh is dominated by cache misses).
+struct LeafHeader {
+  std::uint8_t count;                        ///< triangles in the leaf
+  std::uint8_t num_vertices;                 ///< distinct corners stored after the header
+  std::uint8_t flags[kMaxLeafSize];          ///< detail::kFlag* per triangle
+  std::uint8_t corner[kMaxLeafSize][3];      ///< index into the block's vertices
+  std::int32_t face[kMaxLeafSize];           ///< original face index
+};
+constexpr std::size_t kHeaderBytes = (sizeof(LeafHeader) + 7) / 8 * 8;
+struct alignas(64) CacheLine {
+  unsigned char bytes[64];
+};
+
+/// Running best answer of one query.
+struct Best {
+  double sq_dist = kInf;
+  std::int32_t face = std::numeric_limits<std::int32_t>::max();
+  double bary[3] = {0.0, 0.0, 0.0};
+  ClosestFeature feature = ClosestFeature::Face;
+  bool found = false;
+
+  /// Accepts a candidate when strictly closer, or equally close with a lower face index.
+  bool offer(double s, std::int32_t f) const {
+    return s < sq_dist || (s == sq_dist && (!found || f < face));
+  }
+};
+
+/// Lower bound on the squared distance from q to a node's float box (may overestimate the true
+/// value by float rounding; the pruning threshold carries a matching slack).
+inline float box_sq_dist(const detail::BvhNode& n, const float* q) {
+  const float dx = std::max(std::max(n.lo[0] - q[0], q[0] - n.hi[0]), 0.0f);
+  const float dy = std::max(std::max(n.lo[1] - q[1], q[1] - n.hi[1]), 0.0f);
+  const float dz = std::max(std::max(n.lo[2] - q[2], q[2] - n.hi[2]), 0.0f);
+  return dx * dx + dy * dy + dz * dz;
+}
+
+/// box_sq_dist() of both nodes of a child pair (nodes pair[0] and pair[1], adjacent and
+/// 32-byte aligned) at once.
+inline void pair_sq_dist(const detail::BvhNode* pair, const float* q, float& d0, float& d1) {
+#if defined(__SSE2__)
+  // Each node is {lo.xyz, first} {hi.xyz, count}: mask the integer lane before any arithmetic.
+  const __m128 mask = _mm_castsi128_ps(_mm_set_epi32(0, -1, -1, -1));
+  const __m128 q4 = _mm_set_ps(0.0f, q[2], q[1], q[0]);
+  const auto* f = reinterpret_cast<const float*>(pair);
+  const __m128 lo0 = _mm_and_ps(_mm_load_ps(f), mask);
+  const __m128 hi0 = _mm_and_ps(_mm_load_ps(f + 4), mask);
+  const __m128 lo1 = _mm_and_ps(_mm_load_ps(f + 8), mask);
+  const __m128 hi1 = _mm_and_ps(_mm_load_ps(f + 12), mask);
+  const __m128 zero = _mm_setzero_ps();
+  __m128 a = _mm_max_ps(_mm_max_ps(_mm_sub_ps(lo0, q4), _mm_sub_ps(q4, hi0)), zero);
+  __m128 b = _mm_max_ps(_mm_max_ps(_mm_sub_ps(lo1, q4), _mm_sub_ps(q4, hi1)), zero);
+  a = _mm_mul_ps(a, a);
+  b = _mm_mul_ps(b, b);
+  // Horizontal sums of a and b: lanes 0 and 1 of t.
+  __m128 t = _mm_add_ps(_mm_unpacklo_ps(a, b), _mm_unpackhi_ps(a, b));  // a0+a2 b0+b2 a1+a3 b1+b3
+  t = _mm_add_ps(t, _mm_movehl_ps(t, t));
+  d0 = _mm_cvtss_f32(t);
+  d1 = _mm_cvtss_f32(_mm_shuffle_ps(t, t, 1));
+#else
+  d0 = box_sq_dist(pair[0], q);
+  d1 = box_sq_dist(pair[1], q);
+#endif
+}
+
+}  // namespace
+
+double ClosestPoint::distance() const { return std::sqrt(sq_dist); }
+
+struct ClosestPointIndex::Impl {
+  TriangleMesh mesh;
+  // Tree nodes; a leaf's `first` is the index of its block in `blocks` and `count` the
+  // number of 64-byte lines of the block.
+  std::vector<detail::BvhNode, detail::CacheAlignedAllocator<detail::BvhNode>> nodes;
+  std::vector<CacheLine, detail::CacheAlignedAllocator<CacheLine>> blocks;
+  std::vector<std::uint8_t> face_flags;    // by face: detail::kFlag*
+  std::vector<std::uint8_t> vertex_boundary;  // by vertex: 1 on an open-boundary edge
+  Points vertex_normals;                   // #V by 3 area-weighted unit normals (or zero)
+
+  explicit Impl(const TriangleMesh& m) : mesh(m) {
+    detail::validate_triangle_mesh(mesh, "ClosestPointIndex");
+    face_flags = detail::triangle_flags(mesh, &vertex_boundary);
+    vertex_normals = detail::area_weighted_vertex_normals(mesh);
+    detail::BvhBuildOptions options;
+    options.max_leaf_size = kMaxLeafSize;
+    detail::Bvh bvh = detail::Bvh::build(detail::triangle_boxes(mesh), options);
+    nodes = std::move(bvh.nodes);
+    build_leaf_blocks(bvh.prims);
+  }
+
+  void build_leaf_blocks(const std::vector<std::int32_t>& prims) {
+    std::size_t num_lines = 0;
+    for (const detail::BvhNode& n : nodes) {
+      if (n.is_leaf()) num_lines += (kHeaderBytes + 3 * n.count * 24 + 63) / 64;
+    }
+    blocks.assign(num_lines, CacheLine{});
+    std::size_t line = 0;
+    for (detail::BvhNode& n : nodes) {
+      if (!n.is_leaf()) continue;
+      unsigned char* base = blocks[line].bytes;
+      LeafHeader h{};
+      h.count = static_cast<std::uint8_t>(n.count);
+      Index verts[3 * kMaxLeafSize];
+      int nv = 0;
+      for (int i = 0; i < n.count; ++i) {
+        const std::int32_t f = prims[n.first + i];
+        h.face[i] = f;
+        h.flags[i] = face_flags[f];
+        for (int k = 0; k < 3; ++k) {
+          const Index v = mesh.F(f, k);
+          int j = 0;
+          while (j < nv && verts[j] != v) ++j;
+          if (j == nv) verts[nv++] = v;
+          h.corner[i][k] = static_cast<std::uint8_t>(j);
+        }
+      }
+      h.num_vertices = static_cast<std::uint8_t>(nv);
+      std::memcpy(base, &h, sizeof(LeafHeader));
+      auto* coords = reinterpret_cast<double*>(base + kHeaderBytes);
+      for (int j = 0; j < nv; ++j) {
+        for (int k = 0; k < 3; ++k) coords[3 * j + k] = mesh.V(verts[j], k);
+      }
+      const std::size_t lines = (kHeaderBytes + 24 * nv + 63) / 64;
+      n.first = static_cast<std::int32_t>(line);
+      n.count = static_cast<std::int32_t>(lines);
+      line += lines;
+    }
+    blocks.resize(line);
+    blocks.shrink_to_fit();
+  }
+
+  const double* vertex(Index face, int corner) const {
+    return mesh.V.data() + 3 * static_cast<std::ptrdiff_t>(mesh.F(face, corner));
+  }
+
+  /// Tests one face by index (warm start).
+  void offer_face(const double* q, Index f, Best& best) const {
+    double bary[3];
+    ClosestFeature feature;
+    const double s = detail::closest_point_on_triangle_kernel(
+        q, vertex(f, 0), vertex(f, 1), vertex(f, 2), (face_flags[f] & detail::kFlagDegenerate) != 0,
+        bary, feature);
+    if (best.offer(s, f)) {
+      best.sq_dist = s;
+      best.face = f;
+      best.found = true;
+      std::copy(bary, bary + 3, best.bary);
+      best.feature = feature;
+    }
+  }
+
+  /// Branch-and-bound descent: visits every node whose box may hold a triangle at least as
+  /// close as the current best (nearest child first), so the answer is exact.
+  void search(const double* q, Best& best) const {
+    const detail::BvhNode* nodes = this->nodes.data();
+    const float qf[3] = {static_cast<float>(q[0]), static_cast<float>(q[1]),
+                         static_cast<float>(q[2])};
+    // Box distances are computed in float from a rounded query: allow for both errors.
+    const double qmax = std::max({std::abs(q[0]), std::abs(q[1]), std::abs(q[2]), 1.0});
+    const double slack = 4e-7 * qmax;
+    auto threshold = [&](double sq) -> float {
+      if (!(sq < kInf)) return std::numeric_limits<float>::infinity();
+      const double r = std::sqrt(sq) + slack;
+      return static_cast<float>(r * r * (1.0 + 1e-5));
+    };
+    float thr = threshold(best.sq_dist);
+    if (box_sq_dist(nodes[0], qf) > thr) return;
+
+    struct Entry {
+      std::int32_t node;
+      float sq;
+    };
+    auto prefetch = [&](const detail::BvhNode& c) {
+      if (c.is_leaf()) {
+        const unsigned char* p = blocks[c.first].bytes;
+        for (std::int32_t l = 0; l < c.count; ++l) __builtin_prefetch(p + 64 * l);
+      } else {
+        __builtin_prefetch(nodes + c.first);
+      }
+    };
+    Entry stack[detail::kBvhMaxStack];
+    int sp = 0;
+    std::int32_t node = 0;
+    for (;;) {
+      const detail::BvhNode& n = nodes[node];
+      if (!n.is_leaf()) {
+        const std::int32_t c0 = n.first;
+        float d0, d1;
+        pair_sq_dist(nodes + c0, qf, d0, d1);
+        std::int32_t near = c0, far = c0 + 1;
+        if (d1 < d0) {
+          std::swap(d0, d1);
+          std::swap(near, far);
+        }
+        if (d0 <= thr) {
+          // Start fetching what the children will read (memory-level parallelism: on a large
+          // mesh the queries are bound by cache misses, not arithmetic).
+          prefetch(nodes[near]);
+          if (d1 <= thr) {
+            prefetch(nodes[far]);
+            stack[sp++] = {far, d1};
+          }
+          node = near;
+          continue;
+        }
+      } else {
+        const unsigned char* base = blocks[n.first].bytes;
+        const auto* h = reinterpret_cast<const LeafHeader*>(base);
+        const auto* coords = reinterpret_cast<const double*>(base + kHeaderBytes);
+        for (int i = 0; i < h->count; ++i) {
+          double bary[3];
+          ClosestFeature feature;
+          const double s = detail::closest_point_on_triangle_kernel(
+              q, coords + 3 * h->corner[i][0], coords + 3 * h->corner[i][1],
+              coords + 3 * h->corner[i][2], (h->flags[i] & detail::kFlagDegenerate) != 0, bary,
+              feature);
+          if (best.offer(s, h->face[i])) {
+            best.sq_dist = s;
+            best.face = h->face[i];
+            best.found = true;
+            std::copy(bary, bary + 3, best.bary);
+            best.feature = feature;
+            thr = threshold(s);
+          }
+        }
+      }
+      // Pop the next node that may still hold a closer triangle.
+      for (;;) {
+        if (sp == 0) return;
+        const Entry& e = stack[--sp];
+        if (e.sq <= thr) {
+          node = e.node;
+          break;
+        }
+      }
+    }
+  }
+
+  ClosestPoint finish(const Best& best) const {
+    ClosestPoint cp;
+    cp.face = best.face;
+    cp.bary = Vec3(best.bary[0], best.bary[1], best.bary[2]);
+    const double* a = vertex(best.face, 0);
+    const double* b = vertex(best.face, 1);
+    const double* c = vertex(best.face, 2);
+    for (int k = 0; k < 3; ++k) {
+      cp.point[k] = best.bary[0] * a[k] + best.bary[1] * b[k] + best.bary[2] * c[k];
+    }
+    cp.sq_dist = best.sq_dist;
+    cp.feature = best.feature;
+    cp.on_boundary = detail::feature_on_boundary(best.feature, face_flags[best.face],
+                                                 mesh.F(best.face, 0), mesh.F(best.face, 1),
+                                                 mesh.F(best.face, 2), vertex_boundary);
+    return cp;
+  }
+
+  void check_query(const Vec3& q) const {
+    if (!q.allFinite()) throw InvalidInput("ClosestPointIndex: query point is not finite");
+  }
+};
+
+ClosestPointIndex::ClosestPointIndex(const TriangleMesh& mesh)
+    : impl_(std::make_unique<Impl>(mesh)) {}
+ClosestPointIndex::~ClosestPointIndex() = default;
+ClosestPointIndex::ClosestPointIndex(ClosestPointIndex&&) noexcept = default;
+ClosestPointIndex& ClosestPointIndex::operator=(ClosestPointIndex&&) noexcept = default;
+
+ClosestPoint ClosestPointIndex::closest(const Vec3& q) const {
+  impl_->check_query(q);
+  Best best;
+  impl_->search(q.data(), best);
+  return impl_->finish(best);
+}
+
+ClosestPoint ClosestPointIndex::closest(const Vec3& q, Index hint_face) const {
+  impl_->check_query(q);
+  Best best;
+  if (hint_face >= 0 && hint_face < impl_->mesh.num_faces()) {
+    impl_->offer_face(q.data(), hint_face, best);
+  }
+  impl_->search(q.data(), best);
+  return impl_->finish(best);
+}
+
+std::optional<ClosestPoint> ClosestPointIndex::closest_within(const Vec3& q,
+                                                              double max_dist) const {
+  impl_->check_query(q);
+  if (std::isnan(max_dist) || max_dist < 0.0) {
+    throw InvalidInput("ClosestPointIndex::closest_within: max_dist must be >= 0, got " +
+                       std::to_string(max_dist));
+  }
+  Best best;
+  best.sq_dist = max_dist * max_dist;
+  impl_->search(q.data(), best);
+  if (!best.found) return std::nullopt;
+  return impl_->finish(best);
+}
+
+std::optional<ClosestPoint> ClosestPointIndex::closest_within(const Vec3& q, double max_dist,
+                                                              Index hint_face) const {
+  impl_->check_query(q);
+  if (std::isnan(max_dist) || max_dist < 0.0) {
+    throw InvalidInput("ClosestPointIndex::closest_within: max_dist must be >= 0, got " +
+                       std::to_string(max_dist));
+  }
+  Best best;
+  best.sq_dist = max_dist * max_dist;
+  if (hint_face >= 0 && hint_face < impl_->mesh.num_faces()) {
+    impl_->offer_face(q.data(), hint_face, best);
+  }
+  impl_->search(q.data(), best);
+  if (!best.found) return std::nullopt;
+  return impl_->finish(best);
+}
+
+std::vector<ClosestPoint> ClosestPointIndex::closest_batch(const Points& Q) const {
+  const auto n = static_cast<std::size_t>(Q.rows());
+  std::vector<ClosestPoint> out(n);
+  if (n == 0) return out;
+  if (!Q.allFinite()) throw InvalidInput("ClosestPointIndex::closest_batch: non-finite query");
+  const std::vector<std::uint32_t> order = detail::morton_order(Q);
+  Index hint = -1;
+  for (const std::uint32_t i : order) {
+    const double* q = Q.data() + 3 * static_cast<std::ptrdiff_t>(i);
+    Best best;
+    if (hint >= 0) impl_->offer_face(q, hint, best);
+    impl_->search(q, best);
+    out[i] = impl_->finish(best);
+    hint = best.face;
+  }
+  return out;
+}
+
+Vec3 ClosestPointIndex::face_normal(Index face) const {
+  if (face < 0 || face >= impl_->mesh.num_faces()) {
+    throw InvalidInput("ClosestPointIndex::face_normal: face " + std::to_string(face) +
+                       " out of range [0, " + std::to_string(impl_->mesh.num_faces()) + ")");
+  }
+  if (impl_->face_flags[face] & detail::kFlagDegenerate) return Vec3::Zero();
+  const Vec3 a = impl_->mesh.V.row(impl_->mesh.F(face, 0));
+  const Vec3 b = impl_->mesh.V.row(impl_->mesh.F(face, 1));
+  const Vec3 c = impl_->mesh.V.row(impl_->mesh.F(face, 2));
+  const Vec3 n = (b - a).cross(c - a);
+  const double len = n.norm();
+  return len > 0.0 ? Vec3(n / len) : Vec3::Zero();
+}
+
+Vec3 ClosestPointIndex::smooth_normal(const ClosestPoint& cp) const {
+  if (cp.face < 0 || cp.face >= impl_->mesh.num_faces()) {
+    throw InvalidInput("ClosestPointIndex::smooth_normal: face " + std::to_string(cp.face) +
+                       " out of range");
+  }
+  Vec3 n = Vec3::Zero();
+  for (int k = 0; k < 3; ++k) {
+    n += cp.bary[k] * impl_->vertex_normals.row(impl_->mesh.F(cp.face, k)).transpose();
+  }
+  const double len = n.norm();
+  if (len > 0.0 && std::isfinite(len)) return n / len;
+  return face_normal(cp.face);
+}
+
+const TriangleMesh& ClosestPointIndex::mesh() const { return impl_->mesh; }
+
+}  // namespace breastfit::spatial

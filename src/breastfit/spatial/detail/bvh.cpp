@@ -1,0 +1,321 @@
+#include "breastfit/spatial/detail/bvh.h"
+
+#include <algorithm>
+#include <array>
+#include <cassert>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+namespace breastfit::spatial::detail {
+namespace {
+
+/// Beyond this depth the build switches to object-median splits, which halve the count, so
+/// the depth stays below kSahDepthLimit + 32 < kBvhMaxStack.
+constexpr int kSahDepthLimit = 64;
+
+struct Aabb {
+  double lo[3] = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
+                  std::numeric_limits<double>::infinity()};
+  double hi[3] = {-std::numeric_limits<double>::infinity(),
+                  -std::numeric_limits<double>::infinity(),
+                  -std::numeric_limits<double>::infinity()};
+  void grow(const double* l, const double* h) {
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::min(lo[k], l[k]);
+      hi[k] = std::max(hi[k], h[k]);
+    }
+  }
+  void grow_point(const double* p) { grow(p, p); }
+  double half_area() const {
+    const double dx = hi[0] - lo[0], dy = hi[1] - lo[1], dz = hi[2] - lo[2];
+    if (!(dx >= 0.0)) return 0.0;
+    return dx * dy + dy * dz + dz * dx;
+  }
+};
+
+float round_down(double x) {
+  const auto f = static_cast<float>(x);
+  return static_cast<double>(f) > x ? std::nextafter(f, -std::numeric_limits<float>::infinity())
+                                    : f;
+}
+float round_up(double x) {
+  const auto f = static_cast<float>(x);
+  return static_cast<double>(f) < x ? std::nextafter(f, std::numeric_limits<float>::infinity())
+                                    : f;
+}
+
+struct Task {
+  std::int32_t node;
+  std::int32_t begin;
+  std::int32_t end;
+  int depth;
+  Aabb box;   // bounds of the primitives' boxes
+  Aabb cbox;  // bounds of their centroids
+};
+
+struct Bin {
+  Aabb box;
+  Aabb cbox;
+  std::int32_t count = 0;
+};
+
+std::uint64_t spread_bits_21(std::uint64_t x) {
+  x &= 0x1fffff;
+  x = (x | x << 32) & 0x1f00000000ffffULL;
+  x = (x | x << 16) & 0x1f0000ff0000ffULL;
+  x = (x | x << 8) & 0x100f00f00f00f00fULL;
+  x = (x | x << 4) & 0x10c30c30c30c30c3ULL;
+  x = (x | x << 2) & 0x1249249249249249ULL;
+  return x;
+}
+
+/// LBVH: sort by the Morton code of the box centres, split each range where the highest
+/// differing bit flips (equal codes: halve), then fit the boxes bottom-up. The depth is at most
+/// 63 bit levels plus log2(n) halvings.
+Bvh build_morton(const std::vector<PrimBox>& boxes, int max_leaf) {
+  Bvh bvh;
+  const auto n = static_cast<std::int32_t>(boxes.size());
+  Aabb cbox;
+  for (const PrimBox& b : boxes) {
+    const double c[3] = {0.5 * (b.lo[0] + b.hi[0]), 0.5 * (b.lo[1] + b.hi[1]),
+                         0.5 * (b.lo[2] + b.hi[2])};
+    cbox.grow_point(c);
+  }
+  double scale[3];
+  for (int k = 0; k < 3; ++k) {
+    const double ext = cbox.hi[k] - cbox.lo[k];
+    scale[k] = ext > 0.0 ? static_cast<double>((1u << 21) - 1) / ext : 0.0;
+  }
+  std::vector<std::pair<std::uint64_t, std::int32_t>> keys(n);
+  for (std::int32_t i = 0; i < n; ++i) {
+    std::uint64_t code = 0;
+    for (int k = 0; k < 3; ++k) {
+      const double c = 0.5 * (boxes[i].lo[k] + boxes[i].hi[k]);
+      const auto cell = static_cast<std::uint64_t>((c - cbox.lo[k]) * scale[k]);
+      code |= spread_bits_21(cell) << (2 - k);
+    }
+    keys[i] = {code, i};
+  }
+  std::sort(keys.begin(), keys.end());
+  bvh.prims.resize(n);
+  for (std::int32_t i = 0; i < n; ++i) bvh.prims[i] = keys[i].second;
+
+  bvh.nodes.reserve(2 * static_cast<std::size_t>(n) + 2);
+  bvh.nodes.resize(2);
+  struct Range {
+    std::int32_t node, begin, end;
+    int depth;
+  };
+  std::vector<Range> stack;
+  stack.push_back({0, 0, n, 0});
+  while (!stack.empty()) {
+    const Range r = stack.back();
+    stack.pop_back();
+    bvh.max_depth = std::max(bvh.max_depth, r.depth);
+    if (r.end - r.begin <= max_leaf) {
+      bvh.nodes[r.node].first = r.begin;
+      bvh.nodes[r.node].count = r.end - r.begin;
+      continue;
+    }
+    const std::uint64_t first = keys[r.begin].first, last = keys[r.end - 1].first;
+    std::int32_t mid;
+    if (first == last) {
+      mid = r.begin + (r.end - r.begin) / 2;
+    } else {
+      const int bit = 63 - __builtin_clzll(first ^ last);
+      const std::uint64_t mask = std::uint64_t{1} << bit;
+      // First key in the range with the bit set (keys sorted, prefix above `bit` shared).
+      std::int32_t lo = r.begin, hi = r.end - 1;
+      while (lo < hi) {
+        const std::int32_t m = lo + (hi - lo) / 2;
+        if (keys[m].first & mask) {
+          hi = m;
+        } else {
+          lo = m + 1;
+        }
+      }
+      mid = lo;
+    }
+    const auto left = static_cast<std::int32_t>(bvh.nodes.size());
+    bvh.nodes.resize(bvh.nodes.size() + 2);
+    bvh.nodes[r.node].first = left;
+    bvh.nodes[r.node].count = 0;
+    stack.push_back({left + 1, mid, r.end, r.depth + 1});
+    stack.push_back({left, r.begin, mid, r.depth + 1});
+  }
+  // Children always follow their parent: fit boxes from the back.
+  for (std::size_t i = bvh.nodes.size(); i-- > 0;) {
+    if (i == 1) continue;  // padding
+    BvhNode& node = bvh.nodes[i];
+    if (node.is_leaf()) {
+      Aabb box;
+      for (std::int32_t s = node.first; s < node.first + node.count; ++s) {
+        box.grow(boxes[bvh.prims[s]].lo, boxes[bvh.prims[s]].hi);
+      }
+      for (int k = 0; k < 3; ++k) {
+        node.lo[k] = round_down(box.lo[k]);
+        node.hi[k] = round_up(box.hi[k]);
+      }
+    } else {
+      const BvhNode& a = bvh.nodes[node.first];
+      const BvhNode& b = bvh.nodes[node.first + 1];
+      for (int k = 0; k < 3; ++k) {
+        node.lo[k] = std::min(a.lo[k], b.lo[k]);
+        node.hi[k] = std::max(a.hi[k], b.hi[k]);
+      }
+    }
+  }
+  return bvh;
+}
+
+}  // namespace
+
+Bvh Bvh::build(const std::vector<PrimBox>& boxes, const BvhBuildOptions& options) {
+  Bvh bvh;
+  const auto n = static_cast<std::int32_t>(boxes.size());
+  if (n == 0) return bvh;
+  const int max_leaf = std::max(1, options.max_leaf_size);
+  if (options.method == BvhBuildMethod::Morton) {
+    bvh = build_morton(boxes, max_leaf);
+    assert(bvh.max_depth < kBvhMaxStack - 1 && "BVH deeper than the traversal stack");
+    return bvh;
+  }
+  const int num_bins = std::clamp(options.num_bins, 2, 64);
+
+  std::vector<double> centroid(3 * static_cast<std::size_t>(n));
+  for (std::int32_t i = 0; i < n; ++i) {
+    for (int k = 0; k < 3; ++k) centroid[3 * i + k] = 0.5 * (boxes[i].lo[k] + boxes[i].hi[k]);
+  }
+  bvh.prims.resize(n);
+  for (std::int32_t i = 0; i < n; ++i) bvh.prims[i] = i;
+  bvh.nodes.reserve(2 * static_cast<std::size_t>(n / std::max(1, max_leaf / 2)) + 4);
+  bvh.nodes.resize(2);  // root + padding so that child pairs start at an even index
+
+  std::vector<Task> stack;
+  {
+    Task root{0, 0, n, 0, {}, {}};
+    for (std::int32_t i = 0; i < n; ++i) {
+      root.box.grow(boxes[i].lo, boxes[i].hi);
+      root.cbox.grow_point(&centroid[3 * i]);
+    }
+    stack.push_back(root);
+  }
+  std::vector<std::int32_t>& idx = bvh.prims;
+  std::vector<Bin> bins(num_bins);
+  std::vector<Aabb> right_box(num_bins), right_cbox(num_bins);
+  std::vector<std::int32_t> right_count(num_bins);
+
+  while (!stack.empty()) {
+    const Task task = stack.back();
+    stack.pop_back();
+    {
+      BvhNode& node = bvh.nodes[task.node];
+      for (int k = 0; k < 3; ++k) {
+        node.lo[k] = round_down(task.box.lo[k]);
+        node.hi[k] = round_up(task.box.hi[k]);
+      }
+    }
+    const std::int32_t count = task.end - task.begin;
+    bvh.max_depth = std::max(bvh.max_depth, task.depth);
+    if (count <= max_leaf) {
+      bvh.nodes[task.node].first = task.begin;
+      bvh.nodes[task.node].count = count;
+      continue;
+    }
+
+    // Binned SAH along the widest centroid axis; the children's bounds come from the bins.
+    const Aabb& cbox = task.cbox;
+    int axis = 0;
+    double ext[3];
+    for (int k = 0; k < 3; ++k) ext[k] = cbox.hi[k] - cbox.lo[k];
+    if (ext[1] > ext[axis]) axis = 1;
+    if (ext[2] > ext[axis]) axis = 2;
+    std::int32_t mid = -1;
+    Task left_task{0, 0, 0, task.depth + 1, {}, {}};
+    Task right_task{0, 0, 0, task.depth + 1, {}, {}};
+    if (task.depth < kSahDepthLimit && ext[axis] > 0.0) {
+      const double scale = num_bins / ext[axis];
+      const double lo = cbox.lo[axis];
+      auto bin_of = [&](std::int32_t p) {
+        return std::min(num_bins - 1, static_cast<int>((centroid[3 * p + axis] - lo) * scale));
+      };
+      for (Bin& b : bins) b = Bin{};
+      for (std::int32_t s = task.begin; s < task.end; ++s) {
+        const std::int32_t p = idx[s];
+        Bin& b = bins[bin_of(p)];
+        b.count++;
+        b.box.grow(boxes[p].lo, boxes[p].hi);
+        b.cbox.grow_point(&centroid[3 * p]);
+      }
+      Aabb acc, cacc;
+      std::int32_t acc_n = 0;
+      for (int b = num_bins - 1; b > 0; --b) {
+        acc.grow(bins[b].box.lo, bins[b].box.hi);
+        cacc.grow(bins[b].cbox.lo, bins[b].cbox.hi);
+        acc_n += bins[b].count;
+        right_box[b] = acc;
+        right_cbox[b] = cacc;
+        right_count[b] = acc_n;
+      }
+      acc = Aabb{};
+      cacc = Aabb{};
+      acc_n = 0;
+      double best_cost = std::numeric_limits<double>::infinity();
+      int best_split = -1;
+      for (int b = 0; b < num_bins - 1; ++b) {
+        acc.grow(bins[b].box.lo, bins[b].box.hi);
+        cacc.grow(bins[b].cbox.lo, bins[b].cbox.hi);
+        acc_n += bins[b].count;
+        if (acc_n == 0 || right_count[b + 1] == 0) continue;
+        const double cost =
+            acc.half_area() * acc_n + right_box[b + 1].half_area() * right_count[b + 1];
+        if (cost < best_cost) {
+          best_cost = cost;
+          best_split = b + 1;
+          left_task.box = acc;
+          left_task.cbox = cacc;
+        }
+      }
+      if (best_split > 0) {
+        right_task.box = right_box[best_split];
+        right_task.cbox = right_cbox[best_split];
+        auto it = std::partition(idx.begin() + task.begin, idx.begin() + task.end,
+                                 [&](std::int32_t p) { return bin_of(p) < best_split; });
+        mid = static_cast<std::int32_t>(it - idx.begin());
+        if (mid == task.begin || mid == task.end) mid = -1;
+      }
+    }
+    if (mid < 0) {
+      // Object median along the widest centroid axis (also handles coincident centroids).
+      mid = task.begin + count / 2;
+      std::nth_element(idx.begin() + task.begin, idx.begin() + mid, idx.begin() + task.end,
+                       [&](std::int32_t a, std::int32_t b) {
+                         const double ca = centroid[3 * a + axis], cb = centroid[3 * b + axis];
+                         return ca < cb || (ca == cb && a < b);
+                       });
+      left_task.box = left_task.cbox = right_task.box = right_task.cbox = Aabb{};
+      for (std::int32_t s = task.begin; s < task.end; ++s) {
+        Task& t = s < mid ? left_task : right_task;
+        t.box.grow(boxes[idx[s]].lo, boxes[idx[s]].hi);
+        t.cbox.grow_point(&centroid[3 * idx[s]]);
+      }
+    }
+    const auto left = static_cast<std::int32_t>(bvh.nodes.size());
+    bvh.nodes.resize(bvh.nodes.size() + 2);
+    bvh.nodes[task.node].first = left;
+    bvh.nodes[task.node].count = 0;
+    left_task.node = left;
+    left_task.begin = task.begin;
+    left_task.end = mid;
+    right_task.node = left + 1;
+    right_task.begin = mid;
+    right_task.end = task.end;
+    stack.push_back(right_task);
+    stack.push_back(left_task);
+  }
+  assert(bvh.max_depth < kBvhMaxStack - 1 && "BVH deeper than the traversal stack");
+  return bvh;
+}
+
+}  // namespace breastfit::spatial::detail

@@ -1,0 +1,47 @@
+#pragma once
+/// \file Per-triangle and per-vertex tables the spatial indices precompute at build time:
+/// validation, degenerate/boundary flags, area-weighted vertex normals, primitive boxes and a
+/// Morton order for batched queries (private to the spatial layer).
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "breastfit/core/types.h"
+#include "breastfit/mesh/triangle_mesh.h"
+#include "breastfit/spatial/closest_point_index.h"
+#include "breastfit/spatial/detail/bvh.h"
+
+namespace breastfit::spatial::detail {
+
+inline constexpr std::uint8_t kFlagDegenerate = 1;      ///< zero-area (or nearly) triangle
+inline constexpr std::uint8_t kFlagBoundaryEdge01 = 2;  ///< edge v0–v1 has one incident face
+inline constexpr std::uint8_t kFlagBoundaryEdge12 = 4;  ///< edge v1–v2 has one incident face
+inline constexpr std::uint8_t kFlagBoundaryEdge20 = 8;  ///< edge v2–v0 has one incident face
+
+/// Throws InvalidInput (message prefixed by `who`) when the mesh has no triangles, a
+/// non-finite vertex or a vertex index out of range.
+void validate_triangle_mesh(const TriangleMesh& mesh, const std::string& who);
+
+/// kFlag* bits per face. An edge is an open-boundary edge when exactly one face uses it
+/// (whatever the orientation); edges shared by 2 or more faces are interior. When
+/// `vertex_boundary` is given it receives 1 per vertex lying on such an edge, else 0 (#V).
+std::vector<std::uint8_t> triangle_flags(const TriangleMesh& mesh,
+                                         std::vector<std::uint8_t>* vertex_boundary);
+
+/// #V by 3 unit vertex normals: sum over incident faces of the unnormalised face normal
+/// (cross product = twice the area times the unit normal), normalised; zero when it vanishes.
+Points area_weighted_vertex_normals(const TriangleMesh& mesh);
+
+/// Axis-aligned box of every triangle (#F).
+std::vector<PrimBox> triangle_boxes(const TriangleMesh& mesh);
+
+/// True when `feature` of a face with `flags` and corners (v0, v1, v2) lies on an open
+/// boundary: a boundary edge, or a vertex on a boundary edge. A Face feature never does.
+bool feature_on_boundary(ClosestFeature feature, std::uint8_t flags, Index v0, Index v1,
+                         Index v2, const std::vector<std::uint8_t>& vertex_boundary);
+
+/// Row indices of P (#P by 3, finite) sorted along a 3D Morton (Z-order) curve over P's
+/// bounding box, 21 bits per axis; ties by row index.
+std::vector<std::uint32_t> morton_order(const Points& P);
+
+}  // namespace breastfit::spatial::detail

@@ -1,0 +1,118 @@
+#include "breastfit/fit/registration.h"
+
+#include <gtest/gtest.h>
+
+#include "breastfit/core/errors.h"
+#include "breastfit/core/rng.h"
+#include "breastfit/core/so3.h"
+#include "breastfit/fit/initialization.h"
+#include "breastfit/fit/problem.h"
+#include "breastfit/model/param_layout.h"
+#include "breastfit/model/pose_evaluator.h"
+#include "support/toy_model.h"
+
+namespace breastfit::fit {
+namespace {
+
+TriangleMesh posed_mesh(const model::RiggedModel& m, const model::PoseParams& p) {
+  TriangleMesh t;
+  t.V = model::pose_vertices(m, p);
+  t.F = m.rest.F;
+  return t;
+}
+
+std::vector<LandmarkTarget> landmarks_of(const model::RiggedModel& m, const Points& V) {
+  std::vector<std::pair<std::string, Vec3>> named;
+  for (const auto& lm : m.landmarks) named.emplace_back(lm.name, lm.point.position(V, m.rest.F));
+  return match_landmarks(m, named);
+}
+
+// Energy gradient (2 Jᵀ W r from the normal equations) against central finite differences of the
+// energy through the parameter update, at fixed correspondences.
+TEST(Registration, EnergyGradientMatchesFiniteDifferences) {
+  const auto m = test::make_toy_model();
+  const auto truth = test::random_toy_pose(m, 11, 0.6);
+  ScanTarget scan(posed_mesh(m, truth), 300);
+  const auto lms = landmarks_of(m, model::pose_vertices(m, truth));
+  FitOptions o;
+  o.correspondences.kernel = RobustKernel::Huber;
+  Problem problem(m, scan, o, lms);
+  const auto start = test::random_toy_pose(m, 12, 0.3);
+  problem.evaluator().set_params(start);
+  problem.update_correspondences(1e6, 1, true);
+  NormalEquations eq(problem.evaluator().layout().num_params());
+  problem.evaluate(&eq);
+  eq.finalize();
+  const auto& layout = problem.evaluator().layout();
+  const double h = 1e-6;
+  for (int i = 0; i < layout.num_params(); ++i) {
+    Eigen::VectorXd d = Eigen::VectorXd::Zero(layout.num_params());
+    d[i] = h;
+    auto plus = start, minus = start;
+    layout.apply_increment(m, d, plus);
+    layout.apply_increment(m, -d, minus);
+    problem.evaluator().set_params(plus);
+    const double ep = problem.evaluate(nullptr).total();
+    problem.evaluator().set_params(minus);
+    const double em = problem.evaluate(nullptr).total();
+    const double fd = (ep - em) / (2 * h);
+    EXPECT_NEAR(2 * eq.g()[i], fd, 1e-4 * std::max(1.0, std::abs(fd))) << layout.name(i);
+  }
+}
+
+TEST(Registration, RecoversAKnownPoseWithoutNoise) {
+  const auto m = test::make_toy_model();
+  const auto truth = test::random_toy_pose(m, 21, 0.5);
+  const TriangleMesh scan_mesh = posed_mesh(m, truth);
+  ScanTarget scan(scan_mesh, 500);
+  FitOptions o;
+  // Without noise the priors only bias the answer: make them weak.
+  o.weights.lambda_scale = o.weights.lambda_blendshapes = o.weights.lambda_joints = 1e4;
+  o.weights.lambda_continuity = 1e6;
+  o.correspondences.max_distance_end_mm = 5.0;
+  o.shape.max_iterations = 60;
+  o.function_tolerance = 1e-9;
+  const auto r = register_template(m, scan, landmarks_of(m, scan_mesh.V), o);
+  ASSERT_TRUE(r.summary.usable()) << r.summary.message;
+  const double rms = std::sqrt((r.vertices - scan_mesh.V).rowwise().squaredNorm().mean());
+  EXPECT_LT(rms, 0.5) << "vertex RMS to the true posed mesh";
+  EXPECT_LT(r.summary.kept_mae_mm, 0.1);
+}
+
+TEST(Registration, UmeyamaRecoversASimilarity) {
+  Rng rng(5);
+  Points src(6, 3);
+  for (int i = 0; i < 6; ++i) src.row(i) << rng.normal(0, 100), rng.normal(0, 100), rng.normal(0, 100);
+  model::Similarity s;
+  s.rotation = exp_so3(Vec3(0.3, -0.5, 0.2));
+  s.scale = 0.001;
+  s.translation = Vec3(400, -200, 50);
+  Points dst(6, 3);
+  for (int i = 0; i < 6; ++i) dst.row(i) = s.apply(src.row(i).transpose()).transpose();
+  const auto e = umeyama_similarity(src, dst);
+  EXPECT_NEAR(e.scale, s.scale, 1e-12);
+  EXPECT_LT(e.rotation.angularDistance(s.rotation), 1e-9);
+  EXPECT_LT((e.translation - s.translation).norm(), 1e-6);
+  EXPECT_THROW(umeyama_similarity(src.topRows(2), dst.topRows(2)), InvalidInput);
+}
+
+TEST(Registration, ReportsNonConvergenceWhenLandmarksAreNowhereNearTheScan) {
+  const auto m = test::make_toy_model();
+  const TriangleMesh scan_mesh = posed_mesh(m, model::PoseParams::identity(m));
+  ScanTarget scan(scan_mesh, 200);
+  auto lms = landmarks_of(m, scan_mesh.V);
+  for (auto& t : lms) t.position += Vec3(2000, 0, 0);  // landmarks of another scan
+  const auto r = register_template(m, scan, lms, FitOptions{});
+  EXPECT_FALSE(r.summary.usable());
+  EXPECT_NE(r.summary.message.find("not converged"), std::string::npos) << r.summary.message;
+}
+
+TEST(Registration, RejectsUnknownOrDuplicateLandmarks) {
+  const auto m = test::make_toy_model();
+  EXPECT_THROW(match_landmarks(m, {{"belly_button", Vec3::Zero()}}), InvalidInput);
+  EXPECT_THROW(match_landmarks(m, {{"nipple_R", Vec3::Zero()}, {"nipple_R", Vec3::Ones()}}), InvalidInput);
+  EXPECT_THROW(match_landmarks(m, {{"nipple_R", Vec3(NAN, 0, 0)}}), InvalidInput);
+}
+
+}  // namespace
+}  // namespace breastfit::fit

@@ -1,0 +1,129 @@
+#include "breastfit/io/read_ply.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <cstring>
+#include <string>
+
+#include "breastfit/core/errors.h"
+#include "support/test_paths.h"
+
+namespace breastfit::io {
+namespace {
+
+template <typename T>
+void put(std::string& out, T v, bool big_endian = false) {
+  char b[sizeof(T)];
+  std::memcpy(b, &v, sizeof(T));
+  if (big_endian) std::reverse(b, b + sizeof(T));
+  out.append(b, sizeof(T));
+}
+
+TEST(ReadPly, AsciiFixtureWithNormalsColoursQuadAndExtraElements) {
+  const TriangleMesh m = read_ply(test::data_dir() / "meshes" / "quad_ascii.ply");
+  ASSERT_EQ(m.num_vertices(), 5);
+  ASSERT_EQ(m.num_faces(), 3);  // quad fan-triangulated + one triangle
+  EXPECT_EQ(m.V(4, 2), 1.25);
+  EXPECT_EQ(m.F.row(0), (Eigen::RowVector3i(0, 1, 2)));
+  EXPECT_EQ(m.F.row(1), (Eigen::RowVector3i(0, 2, 3)));
+  EXPECT_EQ(m.F.row(2), (Eigen::RowVector3i(0, 1, 4)));
+  ASSERT_TRUE(m.has_normals());
+  EXPECT_EQ(m.N(3, 2), 1.0);
+  ASSERT_TRUE(m.has_colors());
+  EXPECT_EQ(m.C(3, 0), 10);
+  EXPECT_EQ(m.C(3, 2), 30);
+  EXPECT_FALSE(m.has_texcoords());
+}
+
+TEST(ReadPly, VertexOnlyFileIsAPointCloud) {
+  const TriangleMesh m = read_ply(test::data_dir() / "meshes" / "points.ply");
+  ASSERT_EQ(m.num_vertices(), 3);
+  EXPECT_TRUE(m.is_point_cloud());
+  EXPECT_EQ(m.V(0, 0), 1.5);
+  EXPECT_EQ(m.V(1, 2), 6e-3);
+  EXPECT_EQ(m.V(2, 1), 8.25);
+}
+
+std::string binary_tetra(bool big_endian) {
+  std::string s = "ply\r\nformat ";
+  s += big_endian ? "binary_big_endian" : "binary_little_endian";
+  s +=
+      " 1.0\r\ncomment CRLF header\r\nelement vertex 4\r\nproperty double x\r\nproperty short y\r\n"
+      "property float z\r\nproperty list ushort int8 junk\r\nproperty float red\r\n"
+      "property float green\r\nproperty float blue\r\n"
+      "element face 2\r\nproperty int tag\r\nproperty list int uint vertex_index\r\n"
+      "element material 1\r\nproperty list uchar float values\r\nend_header\r\n";
+  const double x[4] = {0.125, 1, 0, 0};
+  const short y[4] = {0, 0, 1, -3};
+  const float z[4] = {0, 0, 0, 1.5f};
+  for (int i = 0; i < 4; ++i) {
+    put(s, x[i], big_endian);
+    put(s, y[i], big_endian);
+    put(s, z[i], big_endian);
+    put(s, static_cast<std::uint16_t>(2), big_endian);  // a list on the vertex, skipped
+    put(s, static_cast<std::int8_t>(-1), big_endian);
+    put(s, static_cast<std::int8_t>(5), big_endian);
+    put(s, 1.0f, big_endian);  // float colours in [0,1]
+    put(s, 0.5f, big_endian);
+    put(s, 0.0f, big_endian);
+  }
+  put(s, 77, big_endian);
+  put(s, 3, big_endian);
+  for (std::uint32_t v : {0u, 1u, 2u}) put(s, v, big_endian);
+  put(s, 78, big_endian);
+  put(s, 4, big_endian);
+  for (std::uint32_t v : {0u, 2u, 3u, 1u}) put(s, v, big_endian);
+  put(s, static_cast<std::uint8_t>(1), big_endian);
+  put(s, 9.0f, big_endian);
+  return s;
+}
+
+TEST(ReadPly, BinaryLittleAndBigEndianWithMixedTypesAndSkippedLists) {
+  for (bool big : {false, true}) {
+    SCOPED_TRACE(big ? "big endian" : "little endian");
+    const TriangleMesh m = read_ply_from_memory(binary_tetra(big), "tetra.ply");
+    ASSERT_EQ(m.num_vertices(), 4);
+    ASSERT_EQ(m.num_faces(), 3);
+    EXPECT_EQ(m.V(0, 0), 0.125);
+    EXPECT_EQ(m.V(3, 1), -3.0);
+    EXPECT_EQ(m.V(3, 2), 1.5);
+    EXPECT_EQ(m.F.row(1), (Eigen::RowVector3i(0, 2, 3)));
+    EXPECT_EQ(m.F.row(2), (Eigen::RowVector3i(0, 3, 1)));
+    ASSERT_TRUE(m.has_colors());
+    EXPECT_EQ(m.C(2, 0), 255);
+    EXPECT_EQ(m.C(2, 1), 128);
+    EXPECT_EQ(m.C(2, 2), 0);
+    EXPECT_FALSE(m.has_normals());
+  }
+}
+
+TEST(ReadPly, FacesRepeatingAVertexAreDroppedZeroAreaKept) {
+  const std::string s =
+      "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 3\nproperty list uchar int vertex_indices\nend_header\n"
+      "0 0 0\n1 0 0\n2 0 0\n0 1 0\n"
+      "3 0 1 1\n"     // repeated index: dropped
+      "3 0 1 2\n"     // collinear (zero area): kept
+      "4 0 1 3 3\n";  // quad with a repeat: only the valid fan triangle survives
+  const TriangleMesh m = read_ply_from_memory(s, "deg.ply");
+  ASSERT_EQ(m.num_faces(), 2);
+  EXPECT_EQ(m.F.row(0), (Eigen::RowVector3i(0, 1, 2)));
+  EXPECT_EQ(m.F.row(1), (Eigen::RowVector3i(0, 1, 3)));
+}
+
+TEST(ReadPly, PerVertexTexcoordsAndNonFiniteNormalsDropped) {
+  const std::string s =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nproperty float nx\nproperty float ny\nproperty float nz\n"
+      "property float s\nproperty float t\nelement face 1\nproperty list uchar int vertex_indices\n"
+      "end_header\n0 0 0 nan 0 1 0 0\n1 0 0 0 0 1 1 0\n0 1 0 0 0 1 0 1\n3 0 1 2\n";
+  const TriangleMesh m = read_ply_from_memory(s, "uv.ply");
+  EXPECT_FALSE(m.has_normals());
+  ASSERT_TRUE(m.has_texcoords());
+  EXPECT_EQ(m.UV(2, 1), 1.0);
+  EXPECT_EQ(m.FUV, m.F);
+}
+
+}  // namespace
+}  // namespace breastfit::io

@@ -1,0 +1,241 @@
+#include "breastfit/render/rasterizer.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "breastfit/core/errors.h"
+#include "test_shapes.h"
+
+namespace breastfit::render {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+/// Orthographic camera at −y looking +y (a front view), showing `view_height` units.
+Camera front_camera(double view_height) {
+  Camera c;
+  c.eye = Vec3(0, -50, 0);
+  c.target = Vec3::Zero();
+  c.up = Vec3(0, 0, 1);
+  c.view_height = view_height;
+  return c;
+}
+
+RasterOptions small_options(int size = 200) {
+  RasterOptions o;
+  o.width = size;
+  o.height = size;
+  o.background = {255, 255, 255};
+  return o;
+}
+
+int count_not(const Image& img, Rgb c) {
+  int n = 0;
+  for (int y = 0; y < img.height(); ++y)
+    for (int x = 0; x < img.width(); ++x) n += img.at(x, y) == c ? 0 : 1;
+  return n;
+}
+
+TEST(Rasterizer, CubeSilhouetteCoverage) {
+  Rasterizer r(front_camera(2.0), small_options());
+  r.draw_mesh(test::cube_mesh(0.5));
+  // A unit square in a 2×2 view: a quarter of the image.
+  EXPECT_NEAR(r.surface_coverage(), 0.25, 0.005);
+  const Image img = r.resolve();
+  EXPECT_NEAR(count_not(img, {255, 255, 255}) / 40000.0, 0.25, 0.01);
+  EXPECT_NE(img.at(100, 100), (Rgb{255, 255, 255}));
+  EXPECT_EQ(img.at(10, 10), (Rgb{255, 255, 255}));
+}
+
+TEST(Rasterizer, SphereSilhouetteCoverage) {
+  for (Projection proj : {Projection::Orthographic, Projection::Perspective}) {
+    Camera cam = front_camera(3.0);
+    if (proj == Projection::Perspective) {
+      cam.projection = proj;
+      // At distance 50 a 1-unit sphere spans 2·asin(1/50); choose the fov so it fills 2/3.
+      cam.fov_y_deg = 2.0 * std::atan(1.5 / std::sqrt(50.0 * 50.0 - 1.0)) * 180.0 / kPi;
+    }
+    Rasterizer r(cam, small_options(300));
+    r.draw_mesh(test::sphere_mesh(1.0));
+    const double expected = kPi * 1.0 / 9.0;  // π r² / (3 × 3)
+    EXPECT_NEAR(r.surface_coverage(), expected, 0.01 * expected) << static_cast<int>(proj);
+  }
+}
+
+TEST(Rasterizer, ShadingIsBrightestFacingTheCamera) {
+  Rasterizer r(front_camera(3.0), small_options(300));
+  r.draw_mesh(test::sphere_mesh(1.0));
+  const Image img = r.resolve();
+  auto lum = [&](int x, int y) { const Rgb c = img.at(x, y); return c.r + c.g + c.b; };
+  EXPECT_GT(lum(150, 150), lum(150 + 95, 150));  // centre vs near the rim
+  EXPECT_GT(lum(150, 150), lum(150, 150 + 95));
+}
+
+TEST(Rasterizer, BackFacesAreDarkerAndTinted) {
+  SurfaceStyle style;
+  style.specular = 0;
+  Rasterizer front(front_camera(2.0), small_options(50));
+  front.draw_mesh(test::square_mesh(0.5, 0.0), style);  // normal −y: faces the camera
+  TriangleMesh flipped = test::square_mesh(0.5, 0.0);
+  flipped.F.col(1).swap(flipped.F.col(2));
+  Rasterizer back(front_camera(2.0), small_options(50));
+  back.draw_mesh(flipped, style);
+  const Rgb f = front.resolve().at(25, 25), b = back.resolve().at(25, 25);
+  EXPECT_GT(f.r + f.g + f.b, b.r + b.g + b.b + 60);
+  EXPECT_GT(b.b, b.r);  // cool tint
+  EXPECT_GT(f.r, f.b);  // skin tone
+}
+
+TEST(Rasterizer, VertexColoursAreInterpolated) {
+  TriangleMesh sq = test::square_mesh(0.5, 0.0);
+  sq.C.resize(4, 3);
+  sq.C << 255, 0, 0, 255, 0, 0, 0, 0, 255, 0, 0, 255;  // bottom red, top blue
+  Rasterizer r(front_camera(1.2), small_options(100));
+  r.draw_mesh(sq);
+  const Image img = r.resolve();
+  const Rgb low = img.at(50, 85), high = img.at(50, 15);
+  EXPECT_GT(low.r, low.b + 100);
+  EXPECT_GT(high.b, high.r + 100);
+}
+
+TEST(Rasterizer, PointBehindTheSurfaceIsHiddenOrDimmed) {
+  const Vec3 behind(0, 1.0, 0), in_front(0, -1.0, 0);
+  const PointStyle red{{255, 0, 0}, 5.0, SizeUnit::Pixels};
+  for (bool show_hidden : {false, true}) {
+    RasterOptions o = small_options(100);
+    o.show_hidden_overlays = show_hidden;
+    o.hidden_alpha = 0.3;
+    Rasterizer r(front_camera(2.0), o);
+    r.draw_mesh(test::square_mesh(0.5, 0.0));
+    const Rgb surface = r.resolve().at(50, 50);
+    EXPECT_FALSE(r.is_visible(behind));
+    EXPECT_TRUE(r.is_visible(in_front));
+    r.draw_point(behind, red);
+    const Rgb seen = r.resolve().at(50, 50);
+    if (!show_hidden) {
+      EXPECT_EQ(seen, surface);
+    } else {
+      EXPECT_NE(seen, surface);
+      EXPECT_GT(seen.r, seen.g + 20);     // tinted towards red
+      EXPECT_LT(seen.r - seen.g, 200);    // but not the full red
+    }
+    r.draw_point(in_front, red);
+    const Rgb front = r.resolve().at(50, 50);
+    EXPECT_GT(front.r, 150);
+    EXPECT_LT(front.g, 80);
+  }
+}
+
+TEST(Rasterizer, DepthBiasKeepsPointsOnTheSkinVisible) {
+  RasterOptions o = small_options(100);
+  o.depth_bias = 0.05;
+  Rasterizer r(front_camera(2.0), o);
+  r.draw_mesh(test::square_mesh(0.5, 0.0));
+  EXPECT_TRUE(r.is_visible(Vec3(0, 0.03, 0)));   // 0.03 behind, within the bias
+  EXPECT_FALSE(r.is_visible(Vec3(0, 0.08, 0)));  // beyond the bias
+  EXPECT_FALSE(r.is_visible(Vec3(5, 0, 0)));     // outside the image
+}
+
+TEST(Rasterizer, PolylineIsDrawnWithItsWidth) {
+  Rasterizer r(front_camera(2.0), small_options(100));
+  Points line(2, 3);
+  line << -0.8, -1, 0, 0.8, -1, 0;  // horizontal through the centre, in front of nothing
+  LineStyle style;
+  style.colour = {0, 0, 255};
+  style.width_px = 4;
+  r.draw_polyline(line, false, style);
+  const Image img = r.resolve();
+  EXPECT_EQ(img.at(50, 50), (Rgb{0, 0, 255}));
+  EXPECT_EQ(img.at(50, 48), (Rgb{0, 0, 255}));
+  EXPECT_EQ(img.at(50, 54), (Rgb{255, 255, 255}));
+  EXPECT_EQ(img.at(5, 50), (Rgb{255, 255, 255}));  // beyond the end (x = −0.8 → pixel 10)
+  EXPECT_THROW(r.draw_polyline(line, false, {{0, 0, 0}, 0.0}), InvalidInput);
+}
+
+TEST(Rasterizer, PointCloudSplats) {
+  TriangleMesh cloud;
+  cloud.V.resize(3, 3);
+  cloud.V << -0.5, 0, 0, 0, 0, 0, 0.5, 0, 0;
+  SurfaceStyle style;
+  style.point_radius_px = 3;
+  Rasterizer r(front_camera(2.0), small_options(100));
+  r.draw_mesh(cloud, style);
+  EXPECT_GT(r.surface_coverage(), 3 * 25.0 / 10000.0);
+  EXPECT_LT(r.surface_coverage(), 3 * 35.0 / 10000.0);
+}
+
+TEST(Rasterizer, WireframeDrawsEdgesOnlyWhereVisible) {
+  // Front square (diagonal from image bottom-left to top-right) hiding a back square whose
+  // diagonal runs the other way.
+  const TriangleMesh front = test::square_mesh(0.5, 0.0);
+  TriangleMesh back = test::square_mesh(0.5, 1.0);
+  back.F << 0, 1, 3, 1, 2, 3;
+  Rasterizer r(front_camera(2.0), small_options(100));
+  r.draw_mesh(front);
+  r.draw_mesh(back);
+  const Image before = r.resolve();
+  r.draw_wireframe(front.V, front.F, {{0, 0, 0}, 1.0, 3.0});
+  r.draw_wireframe(back.V, back.F, {{0, 0, 0}, 1.0, 3.0});
+  const Image after = r.resolve();
+  auto lum = [](Rgb c) { return c.r + c.g + c.b; };
+  EXPECT_LT(lum(after.at(40, 60)), lum(before.at(40, 60)) / 3);  // on the front diagonal
+  EXPECT_EQ(after.at(40, 40), before.at(40, 40));                 // on the hidden back diagonal
+  EXPECT_THROW(r.draw_wireframe(front.V, front.F, {{0, 0, 0}, 0.0, 1.0}), InvalidInput);
+}
+
+TEST(Rasterizer, Deterministic) {
+  auto render = [] {
+    Camera cam = front_camera(3.0);
+    cam.eye = Vec3(-30, -40, 20);
+    Rasterizer r(cam, small_options(128));
+    r.draw_mesh(test::sphere_mesh(1.0));
+    Points ring(50, 3);
+    for (int i = 0; i < 50; ++i) ring.row(i) << std::cos(i * 0.1257), std::sin(i * 0.1257), 0;
+    r.draw_polyline(ring, true);
+    r.draw_point(Vec3(0, -1, 0));
+    return r.resolve().encode_png();
+  };
+  EXPECT_EQ(render(), render());
+}
+
+TEST(Rasterizer, SurvivesNonFiniteAndBehindTheCameraGeometry) {
+  Camera cam = front_camera(2.0);
+  cam.projection = Projection::Perspective;
+  cam.fov_y_deg = 40;
+  cam.eye = Vec3(0, -2, 0);  // the unit square fills about half the view
+  Rasterizer r(cam, small_options(64));
+  TriangleMesh m = test::square_mesh(0.5, 0.0);
+  m.V.conservativeResize(6, 3);
+  m.V.row(4) << std::nan(""), 0, 0;
+  m.V.row(5) << 0, -80, 0;  // behind the eye
+  m.F.conservativeResize(4, 3);
+  m.F.row(2) << 0, 1, 4;
+  m.F.row(3) << 0, 5, 2;
+  r.draw_mesh(m);
+  Points line(3, 3);
+  line << 0, 0, 0, 0, -80, 0, 1e300, 0, 0;
+  r.draw_polyline(line, true);
+  r.draw_point(Vec3(0, -80, 0));
+  r.draw_point(Vec3(1e300, 0, 0));
+  // The valid square is still drawn.
+  EXPECT_GT(r.surface_coverage(), 0.3);
+  EXPECT_FALSE(r.is_visible(Vec3(0, -80, 0)));
+}
+
+TEST(Rasterizer, RejectsBadInput) {
+  EXPECT_THROW(Rasterizer(front_camera(-1.0), small_options()), InvalidInput);
+  RasterOptions o = small_options();
+  o.supersample = 0;
+  EXPECT_THROW(Rasterizer(front_camera(1.0), o), InvalidInput);
+  Rasterizer r(front_camera(2.0), small_options());
+  TriangleMesh bad = test::cube_mesh();
+  bad.F(0, 0) = 99;
+  EXPECT_THROW(r.draw_mesh(bad), InvalidInput);
+  TriangleMesh wrong_colours = test::cube_mesh();
+  wrong_colours.C.resize(3, 3);
+  EXPECT_THROW(r.draw_mesh(wrong_colours.V, wrong_colours.F, Points(), wrong_colours.C), InvalidInput);
+}
+
+}  // namespace
+}  // namespace breastfit::render
