@@ -92,7 +92,14 @@ void print_register_summary(std::ostream& os, const pipeline::RegisterResult& r,
                   r.landmarks.stats.min);
     os << buf;
   }
-  os << "  outputs: " << out_dir << "/{fitted.ply, landmarks.mrk.json, drawings.mrk.json, params.json, report.json}\n";
+  for (const auto& c : r.drawings_on_scan) {
+    std::snprintf(buf, sizeof buf, "  drawing %-18s %6.1f mm long, %3.0f%% on the scan, %.2f mm from the model\n",
+                  c.name.c_str(), c.length_mm, 100 * c.supported_fraction, c.mean_model_to_scan_mm);
+    os << buf;
+  }
+  os << "  outputs: " << out_dir
+     << "/{fitted.ply, landmarks.mrk.json, drawings.mrk.json, drawings.ply, drawings.obj, scan_painted.ply, "
+        "params.json, report.json}\n";
 }
 
 }  // namespace breastfit::cli

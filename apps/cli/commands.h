@@ -15,10 +15,11 @@ void register_register(CLI::App& app, int& exit_code);
 void register_synth(CLI::App& app, int& exit_code);
 void register_bench(CLI::App& app, int& exit_code);
 void register_demo(CLI::App& app, int& exit_code);
+void register_map(CLI::App& app, int& exit_code);
 
 inline constexpr RegisterFn kCommands[] = {
     register_inspect, register_template, register_render, register_register,
-    register_synth,   register_bench,    register_demo,
+    register_synth,   register_bench,    register_demo,    register_map,
 };
 
 }  // namespace breastfit::cli

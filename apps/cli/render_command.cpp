@@ -1,5 +1,6 @@
 // `breastfit render`: headless PNG views of a mesh (with landmarks and drawings) or of a rigged
 // template. See docs/RENDER.md.
+#include <algorithm>
 #include <cctype>
 #include <cstdlib>
 #include <filesystem>
@@ -57,28 +58,37 @@ fs::path output_path(const std::string& out, render::View view, bool single) {
   return fs::path(prefix + "_" + std::string(render::view_name(view)) + ".png");
 }
 
-render::ScenePoint landmark_point(const std::string& name, const Vec3& p) {
+/// Overlay sizes for an image of `size` pixels: 6 px discs and 3 px lines at 1024.
+struct OverlaySizes {
+  double point_radius_px = 6.0;
+  double line_width_px = 3.0;
+  explicit OverlaySizes(int size)
+      : point_radius_px(std::max(3.0, size / 170.0)), line_width_px(std::max(2.0, size / 340.0)) {}
+};
+
+render::ScenePoint landmark_point(const std::string& name, const Vec3& p, const OverlaySizes& sizes) {
   render::ScenePoint sp;
   sp.label = name;
   sp.position = p;
   sp.colour = {215, 25, 32};
-  sp.radius_px = 6.0;
+  sp.radius_px = sizes.point_radius_px;
   return sp;
 }
 
-void add_curve(render::Scene& scene, const std::string& name, bool closed, const Points& points) {
+void add_curve(render::Scene& scene, const std::string& name, bool closed, const Points& points,
+               const OverlaySizes& sizes) {
   render::ScenePolyline l;
   l.name = name;
   l.points = points;
   l.closed = closed;
   l.colour = render::palette_colour(scene.polylines.size());
-  l.width_px = 3.0;
+  l.width_px = sizes.line_width_px;
   scene.polylines.push_back(std::move(l));
 }
 
 /// Adds the landmarks of a file (positions converted to `scale_to_scene` × mm-or-declared units).
 void add_landmarks(render::Scene& scene, render::NamedPositions& named, const std::string& path,
-                   std::optional<mesh::Units> scene_units) {
+                   std::optional<mesh::Units> scene_units, const OverlaySizes& sizes) {
   io::LandmarkReadOptions opt;
   opt.require_known_names = false;
   LandmarkSet lm = io::read_landmarks(path, opt);
@@ -89,20 +99,21 @@ void add_landmarks(render::Scene& scene, render::NamedPositions& named, const st
     factor = declared_mm / mesh::to_mm_factor(*scene_units);
   }
   for (const NamedPoint& p : lm.points) {
-    scene.points.push_back(landmark_point(p.name, factor * p.position));
+    scene.points.push_back(landmark_point(p.name, factor * p.position, sizes));
     named[p.name] = factor * p.position;
   }
 }
 
 /// Adds the curves (and points) of a markups file; read_markups gives millimetres.
-void add_drawings(render::Scene& scene, const std::string& path, std::optional<mesh::Units> scene_units) {
+void add_drawings(render::Scene& scene, const std::string& path, std::optional<mesh::Units> scene_units,
+                  const OverlaySizes& sizes) {
   const Markups m = io::read_markups(path);
   const double factor = scene_units ? 1.0 / mesh::to_mm_factor(*scene_units) : 1.0;
-  for (const Curve& c : m.curves) add_curve(scene, c.name, c.closed, factor * c.points);
+  for (const Curve& c : m.curves) add_curve(scene, c.name, c.closed, factor * c.points, sizes);
   for (const NamedPoint& p : m.points) {
-    render::ScenePoint sp = landmark_point(p.name, factor * p.position);
+    render::ScenePoint sp = landmark_point(p.name, factor * p.position, sizes);
     sp.colour = {30, 30, 30};
-    sp.radius_px = 4.0;
+    sp.radius_px = 0.7 * sizes.point_radius_px;
     scene.points.push_back(sp);
   }
 }
@@ -137,6 +148,7 @@ void run_render(const RenderArgs& a) {
     throw InvalidInput("render: give either a MESH file or --template [FILE], not both / neither");
   if (a.frame != "auto" && a.frame != "landmarks" && a.frame != "axes" && a.frame != "identity")
     throw InvalidInput("render: --frame must be auto, landmarks, axes or identity, got '" + a.frame + "'");
+  const OverlaySizes sizes(a.size);
   std::vector<render::View> views;
   if (a.view == "all")
     views = render::default_views();
@@ -165,16 +177,16 @@ void run_render(const RenderArgs& a) {
       Points P(static_cast<Eigen::Index>(d.points.size()), 3);
       for (size_t i = 0; i < d.points.size(); ++i)
         P.row(static_cast<Eigen::Index>(i)) = d.points[i].position(model.rest.V, model.rest.F).transpose();
-      add_curve(scene, d.name, d.closed, P);
+      add_curve(scene, d.name, d.closed, P, sizes);
     }
     for (const model::ModelLandmark& l : model.landmarks) {
       const Vec3 p = l.point.position(model.rest.V, model.rest.F);
-      scene.points.push_back(landmark_point(l.name, p));
+      scene.points.push_back(landmark_point(l.name, p, sizes));
       named[l.name] = p;
     }
     // The template is in millimetres, in the body frame.
-    if (!a.landmarks.empty()) add_landmarks(scene, named, a.landmarks, mesh::Units::Millimetres);
-    if (!a.drawings.empty()) add_drawings(scene, a.drawings, mesh::Units::Millimetres);
+    if (!a.landmarks.empty()) add_landmarks(scene, named, a.landmarks, mesh::Units::Millimetres, sizes);
+    if (!a.drawings.empty()) add_drawings(scene, a.drawings, mesh::Units::Millimetres, sizes);
   } else {
     TriangleMesh mesh = io::read_mesh(a.mesh);
     what = fs::path(a.mesh).filename().string();
@@ -192,8 +204,8 @@ void run_render(const RenderArgs& a) {
     scene.meshes.back().name = what;
     scene.meshes.back().mesh = std::move(mesh);
     scene.meshes.back().wireframe = a.wireframe;
-    if (!a.landmarks.empty()) add_landmarks(scene, named, a.landmarks, units);
-    if (!a.drawings.empty()) add_drawings(scene, a.drawings, units);
+    if (!a.landmarks.empty()) add_landmarks(scene, named, a.landmarks, units, sizes);
+    if (!a.drawings.empty()) add_drawings(scene, a.drawings, units, sizes);
   }
 
   // The view frame: the template is in the body frame already; a scan is in a scanner frame.
@@ -257,10 +269,11 @@ void register_render(CLI::App& app, int& exit_code) {
   sub->add_flag("--wireframe", args->wireframe, "Overlay the mesh edges");
   sub->add_flag("--no-labels", args->no_labels, "Do not draw landmark names");
   sub->add_flag("--no-hidden", args->no_hidden, "Omit hidden landmarks and curve parts (default: dimmed)");
-  sub->callback([args, tpl, &exit_code] {
+  // Outcomes are exceptions (mapped by main.cpp); exit_code stays kExitOk on success.
+  (void)exit_code;
+  sub->callback([args, tpl] {
     args->use_template = tpl->count() > 0;
     run_render(*args);
-    (void)exit_code;
   });
 }
 

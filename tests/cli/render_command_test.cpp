@@ -5,6 +5,7 @@
 #include <fstream>
 
 #include "breastfit/io/io.h"
+#include "breastfit/io/markups.h"
 #include "breastfit/render/image.h"
 #include "support/test_paths.h"
 
@@ -118,6 +119,45 @@ TEST(RenderCommand, SingleViewExactFileAndErrors) {
             4)
       << out;
   EXPECT_EQ(test::run_cli("render '" + (dir / "torso.ply").string() + "'", &out), 2) << out;
+}
+
+TEST(RenderCommand, DrawingsInMetresAreDrawnOnAMillimetreMesh) {
+  if (test::cli_path().empty()) GTEST_SKIP() << "CLI not built";
+  const fs::path dir = test::temp_dir();
+  io::write_mesh(dir / "torso.ply", ellipsoid());
+  // A closed curve on the anterior surface (z ≈ 100 mm), written in metres.
+  Markups m;
+  Curve c;
+  c.name = "breast_contour_R";
+  c.closed = true;
+  c.points.resize(60, 3);
+  for (int i = 0; i < 60; ++i) {
+    const double a = 2 * 3.14159265358979323846 * i / 60, x = -70 + 40 * std::cos(a), y = 40 * std::sin(a);
+    const double z = 100 * std::sqrt(std::max(0.0, 1 - x * x / (160.0 * 160) - y * y / (250.0 * 250)));
+    c.points.row(i) << x, y, z;
+  }
+  m.curves.push_back(c);
+  io::MarkupsWriteOptions wo;
+  wo.units = "m";
+  io::write_markups(dir / "drawings.mrk.json", m, wo);
+  std::string out;
+  ASSERT_EQ(test::run_cli("render '" + (dir / "torso.ply").string() + "' --drawings '" +
+                              (dir / "drawings.mrk.json").string() + "' --frame identity --view top --size 256 --out '" +
+                              (dir / "d.png").string() + "'",
+                          &out),
+            0)
+      << out;
+  // With the mesh frame taken as the body frame, "top" looks along −z: at the mesh's anterior
+  // side, where the curve lies. Count strong pixels of the first palette colour (curve + legend
+  // swatch); a hidden (dimmed) curve or one drawn 1000× too large would not give them.
+  const render::Image img = render::read_png(dir / "d.png");
+  int blue = 0;
+  for (int y = 0; y < img.height(); ++y)
+    for (int x = 0; x < img.width(); ++x) {
+      const render::Rgb p = img.at(x, y);
+      blue += (p.b > 150 && p.r < 80) ? 1 : 0;
+    }
+  EXPECT_GT(blue, 150) << "curve and legend swatch";
 }
 
 TEST(RenderCommand, DefaultTemplate) {

@@ -182,6 +182,11 @@ TEST(Scene, TitleAndLabelsAreDrawn) {
   };
   EXPECT_EQ(dark_in(plain, 0, 0, 60, 14), 0);
   EXPECT_GT(dark_in(titled, 0, 0, 60, 14), 20);
+  // A title too long for the image is scaled down and cut, never drawn past the right edge.
+  o.title = std::string(200, 'W');
+  const Image long_title = render_scene(s, o);
+  EXPECT_GT(dark_in(long_title, 0, 0, 256, 14), 100);
+  EXPECT_EQ(dark_in(long_title, 250, 0, 256, 14), 0);
   Scene labelled = s;
   labelled.points[0].label = "nipple_R";
   o.title.clear();

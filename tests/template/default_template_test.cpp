@@ -47,7 +47,13 @@ TEST(DefaultTemplate, IsDeterministic) {
     EXPECT_TRUE(a.landmarks[k].point.bary == b.landmarks[k].point.bary);
   }
   ASSERT_EQ(a.drawings.size(), b.drawings.size());
-  for (size_t k = 0; k < a.drawings.size(); ++k) EXPECT_EQ(a.drawings[k].points.size(), b.drawings[k].points.size());
+  for (size_t k = 0; k < a.drawings.size(); ++k) {
+    ASSERT_EQ(a.drawings[k].points.size(), b.drawings[k].points.size());
+    for (size_t i = 0; i < a.drawings[k].points.size(); ++i) {
+      EXPECT_EQ(a.drawings[k].points[i].face, b.drawings[k].points[i].face);
+      EXPECT_TRUE(a.drawings[k].points[i].bary == b.drawings[k].points[i].bary);
+    }
+  }
 }
 
 TEST(DefaultTemplate, VertexCountInRange) {

@@ -23,7 +23,8 @@ double robust_weight(RobustKernel kernel, double r, double sigma) {
 
 std::vector<Correspondence> find_correspondences(const Points& V, const Points& N, const ScanTarget& scan,
                                                  const CorrespondenceOptions& o, double max_distance_mm,
-                                                 int stride, CorrespondenceStats* stats) {
+                                                 int stride, CorrespondenceStats* stats, std::vector<Index>* hints) {
+  if (hints && static_cast<Index>(hints->size()) != V.rows()) hints->assign(V.rows(), -1);
   const double cos_limit = std::cos(o.max_normal_angle_deg * M_PI / 180.0);
   CorrespondenceStats st;
   st.max_distance_mm = max_distance_mm;
@@ -32,7 +33,7 @@ std::vector<Correspondence> find_correspondences(const Points& V, const Points& 
   for (Index i = 0; i < V.rows(); i += stride) {
     ++st.candidates;
     const Vec3 q = V.row(i).transpose();
-    const auto m = scan.match(q, max_distance_mm);
+    const auto m = scan.match(q, max_distance_mm, hints ? &(*hints)[i] : nullptr);
     if (!m) {
       ++st.rejected_distance;
       continue;
@@ -64,7 +65,8 @@ std::vector<ReverseCorrespondence> find_reverse_correspondences(const Points& V,
                                                                 const ScanTarget& scan,
                                                                 const CorrespondenceOptions& o,
                                                                 double max_distance_mm,
-                                                                CorrespondenceStats* stats) {
+                                                                CorrespondenceStats* stats,
+                                                                std::vector<Index>* hints) {
   const double cos_limit = std::cos(o.max_normal_angle_deg * M_PI / 180.0);
   TriangleMesh posed;
   posed.V = V;
@@ -72,6 +74,7 @@ std::vector<ReverseCorrespondence> find_reverse_correspondences(const Points& V,
   const spatial::ClosestPointIndex index(posed);
   const Points& S = scan.sample_points();
   const Points SN = scan.sample_normals();
+  if (hints && static_cast<Index>(hints->size()) != S.rows()) hints->assign(S.rows(), -1);
   CorrespondenceStats st;
   st.max_distance_mm = max_distance_mm;
   std::vector<ReverseCorrespondence> out;
@@ -79,7 +82,10 @@ std::vector<ReverseCorrespondence> find_reverse_correspondences(const Points& V,
   for (Index s = 0; s < S.rows(); ++s) {
     ++st.candidates;
     const Vec3 p = S.row(s).transpose();
-    const auto cp = index.closest_within(p, max_distance_mm);
+    Index* hint = hints ? &(*hints)[s] : nullptr;
+    const auto cp = hint && *hint >= 0 ? index.closest_within(p, max_distance_mm, *hint)
+                                       : index.closest_within(p, max_distance_mm);
+    if (cp && hint) *hint = cp->face;
     if (!cp) {
       ++st.rejected_distance;
       continue;

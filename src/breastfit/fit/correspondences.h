@@ -40,16 +40,20 @@ struct CorrespondenceStats {
 double robust_weight(RobustKernel kernel, double r, double sigma);
 
 /// Correspondences of every `stride`-th model vertex (V, N: posed vertices and unit normals).
+/// `hints` (optional, size #V, in/out): per vertex, the scan face found last time (warm start).
 std::vector<Correspondence> find_correspondences(const Points& V, const Points& N, const ScanTarget& scan,
                                                  const CorrespondenceOptions& options, double max_distance_mm,
-                                                 int stride, CorrespondenceStats* stats);
+                                                 int stride, CorrespondenceStats* stats,
+                                                 std::vector<Index>* hints = nullptr);
 
 /// Closest points on the posed model (V, F) of the scan's samples; pairs whose model point lies on
 /// the model's open border, beyond max_distance_mm or with disagreeing normals are dropped.
+/// `hints` (optional, one per scan sample, in/out): the model face found last time.
 std::vector<ReverseCorrespondence> find_reverse_correspondences(const Points& V, const Triangles& F,
                                                                 const ScanTarget& scan,
                                                                 const CorrespondenceOptions& options,
                                                                 double max_distance_mm,
-                                                                CorrespondenceStats* stats);
+                                                                CorrespondenceStats* stats,
+                                                                std::vector<Index>* hints = nullptr);
 
 }  // namespace breastfit::fit

@@ -108,17 +108,19 @@ void FitOptions::validate() const {
   validate_stage(rigid);
   validate_stage(pose);
   validate_stage(shape);
+  validate_stage(refine);
   require(positive(function_tolerance), "function_tolerance", function_tolerance, "must be > 0");
   require(positive(step_tolerance), "step_tolerance", step_tolerance, "must be > 0");
   require(positive(initial_damping), "initial_damping", initial_damping, "must be > 0");
+  require(hessian_interval >= 1 && hessian_interval <= 10, "hessian_interval", hessian_interval, "must be in [1, 10]");
   require(landmark_warning_mm > 0, "landmark_warning_mm", landmark_warning_mm, "must be > 0");
   require(positive(max_surface_mae_mm), "max_surface_mae_mm", max_surface_mae_mm, "must be > 0");
   require(min_kept_fraction >= 0 && min_kept_fraction <= 1, "min_kept_fraction", min_kept_fraction, "must be in [0, 1]");
 }
 
 void update_from_json(FitOptions& o, const nlohmann::json& j) {
-  check_keys(j, "", {"weights", "correspondences", "rigid", "pose", "shape", "function_tolerance", "step_tolerance",
-                     "initial_damping", "max_blendshapes", "max_landmarks", "use_landmarks", "landmark_warning_mm",
+  check_keys(j, "", {"weights", "correspondences", "rigid", "pose", "shape", "refine", "function_tolerance", "step_tolerance",
+                     "initial_damping", "hessian_interval", "max_blendshapes", "max_landmarks", "use_landmarks", "landmark_warning_mm",
                      "max_surface_mae_mm", "min_kept_fraction"});
   if (auto it = j.find("weights"); it != j.end()) {
     const std::string p = "weights.";
@@ -153,9 +155,11 @@ void update_from_json(FitOptions& o, const nlohmann::json& j) {
   if (auto it = j.find("rigid"); it != j.end()) read_stage(*it, "rigid.", o.rigid);
   if (auto it = j.find("pose"); it != j.end()) read_stage(*it, "pose.", o.pose);
   if (auto it = j.find("shape"); it != j.end()) read_stage(*it, "shape.", o.shape);
+  if (auto it = j.find("refine"); it != j.end()) read_stage(*it, "refine.", o.refine);
   read(j, "function_tolerance", "", o.function_tolerance);
   read(j, "step_tolerance", "", o.step_tolerance);
   read(j, "initial_damping", "", o.initial_damping);
+  read(j, "hessian_interval", "", o.hessian_interval);
   read(j, "max_blendshapes", "", o.max_blendshapes);
   read(j, "max_landmarks", "", o.max_landmarks);
   read(j, "use_landmarks", "", o.use_landmarks);
@@ -181,9 +185,11 @@ nlohmann::json to_json(const FitOptions& o) {
       {"rigid", stage_json(o.rigid)},
       {"pose", stage_json(o.pose)},
       {"shape", stage_json(o.shape)},
+      {"refine", stage_json(o.refine)},
       {"function_tolerance", o.function_tolerance},
       {"step_tolerance", o.step_tolerance},
       {"initial_damping", o.initial_damping},
+      {"hessian_interval", o.hessian_interval},
       {"max_blendshapes", o.max_blendshapes},
       {"max_landmarks", o.max_landmarks},
       {"use_landmarks", o.use_landmarks},

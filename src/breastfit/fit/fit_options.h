@@ -37,13 +37,14 @@ struct CorrespondenceOptions {
   double max_distance_end_mm = 10.0;    ///< threshold reached at the end (geometric decay)
   double max_normal_angle_deg = 60.0;   ///< reject pairs whose normals disagree more than this
   bool reject_boundary = true;          ///< reject pairs whose closest scan feature is on an open border
-  double point_to_point_weight = 0.1;   ///< μ: share of point-to-point in the data term (0 = pure point-to-plane)
+  double point_to_point_weight = 0.0;   ///< μ: share of point-to-point in the data term (0 = pure point-to-plane, the paper)
   RobustKernel kernel = RobustKernel::GemanMcClure;
   double kernel_scale_mm = 5.0;         ///< σ of the robust kernel
-  int reverse_samples = 1500;           ///< scan samples for the reverse term
+  int reverse_samples = 800;            ///< scan samples for the reverse term
 };
 
-/// One coarse-to-fine stage: which parameter groups move and how long.
+/// One coarse-to-fine stage: which parameter groups move and how long. The reverse term
+/// (when enabled) is used in the stages that move blendshapes.
 struct StageOptions {
   std::string name;
   bool global = true;        ///< similarity (rotation, translation, uniform scale)
@@ -58,10 +59,13 @@ struct FitOptions {
   CorrespondenceOptions correspondences;
   StageOptions rigid{"rigid", true, false, false, 8, 4};
   StageOptions pose{"pose", true, true, false, 10, 2};
-  StageOptions shape{"shape", true, true, true, 20, 1};
+  StageOptions shape{"shape", true, true, true, 14, 2};
+  StageOptions refine{"refine", true, true, true, 4, 1};
   double function_tolerance = 1e-4;  ///< stop a stage when the relative energy decrease is below this
   double step_tolerance = 1e-6;      ///< stop a stage when the step's max-norm is below this
   double initial_damping = 1e-3;     ///< LM damping μ relative to diag(JᵀJ)
+  int hessian_interval = 2;          ///< rebuild JᵀWJ every n-th iteration of a stage (1 = always);
+                                     ///< in between only the gradient is recomputed
   int max_blendshapes = -1;          ///< use only the first n blendshapes (experiments); < 0 = all
   int max_landmarks = -1;            ///< use only the first n landmarks in the paper's order; < 0 = all
   bool use_landmarks = true;         ///< false: landmark-free fit (landmarks only reported)

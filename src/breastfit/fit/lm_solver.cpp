@@ -58,11 +58,14 @@ bool solve_stages(Problem& problem, const std::vector<StageOptions>& stages, mod
     Eigen::MatrixXd A(na, na), Ad(na, na);
     Eigen::VectorXd b(na);
     const double stage_end = threshold_at(options.correspondences, stage_index + 1, num_stages, 0, 1);
+    bool rebuild_next = true;
     for (int it = 0; it < stage.max_iterations; ++it) {
+      const bool rebuild = rebuild_next || it % options.hessian_interval == 0;
+      eq.set_gradient_only(!rebuild);
       const double max_dist = threshold_at(options.correspondences, stage_index, num_stages, it, stage.max_iterations);
       const bool final_threshold = max_dist <= stage_end * 1.0001;
       ev.set_params(params);
-      problem.update_correspondences(max_dist, stage.vertex_stride, use_reverse && stage.bones);
+      problem.update_correspondences(max_dist, stage.vertex_stride, use_reverse && stage.blendshapes);
       eq.clear();
       const double e0 = problem.evaluate(&eq).total();
       eq.finalize();
@@ -72,7 +75,7 @@ bool solve_stages(Problem& problem, const std::vector<StageOptions>& stages, mod
         summary.stages.push_back(ss);
         return false;
       }
-      A = eq.H();
+      if (rebuild) A = eq.H();
       b = -eq.g();
       IterationRecord rec;
       rec.stage = stage.name;
@@ -108,13 +111,14 @@ bool solve_stages(Problem& problem, const std::vector<StageOptions>& stages, mod
         damping *= 5.0;
       }
       rec.damping = damping;
+      rebuild_next = !rec.accepted;  // a stale Hessian that fails gets rebuilt
       summary.iterations.push_back(rec);
       if (on_iteration) on_iteration(rec);
       ss.iterations = it + 1;
       ss.final_energy = rec.energy_after;
       const double rel = (rec.energy_before - rec.energy_after) / std::max(rec.energy_before, 1e-300);
       if (final_threshold && it > 0) {
-        if (!rec.accepted || rel < options.function_tolerance) {
+        if ((!rec.accepted && rebuild) || (rec.accepted && rel < options.function_tolerance)) {
           ss.termination = Termination::Converged;
           break;
         }

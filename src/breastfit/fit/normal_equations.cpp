@@ -31,7 +31,7 @@ void NormalEquations::set_active(const std::vector<int>& active) {
 }
 
 void NormalEquations::clear() {
-  H_.setZero();
+  if (!gradient_only_) H_.setZero();
   g_.setZero();
   block_.setZero();
   block_r_.setZero();
@@ -40,19 +40,43 @@ void NormalEquations::clear() {
 }
 
 void NormalEquations::add_row(const int* idx, const double* val, int nnz, double r, double w) {
+  begin_row(r, w);
+  add_to_row(idx, val, nnz, 1.0);
+  end_row();
+}
+
+void NormalEquations::begin_row(double r, double w) {
   cost_ += w * r * r;
-  if (w <= 0.0) return;
-  const double s = std::sqrt(w);
-  const int row = buffered_;
-  bool any = false;
-  for (int k = 0; k < nnz; ++k) {
-    const int c = idx[k] < static_cast<int>(column_.size()) ? column_[idx[k]] : -1;
-    if (c < 0) continue;
-    block_(row, c) += s * val[k];
-    any = true;
+  row_r_ = r;
+  row_w_ = w > 0.0 ? w : 0.0;
+  row_any_ = false;
+}
+
+void NormalEquations::add_to_row(const int* idx, const double* val, int nnz, double scale) {
+  if (row_w_ <= 0.0) return;
+  const int ncol = static_cast<int>(column_.size());
+  if (gradient_only_) {
+    const double f = row_w_ * row_r_ * scale;
+    for (int k = 0; k < nnz; ++k) {
+      const int c = idx[k] < ncol ? column_[idx[k]] : -1;
+      if (c >= 0) g_[c] += f * val[k];
+    }
+    return;
   }
-  if (!any) return;
-  block_r_[row] = s * r;
+  const double f = std::sqrt(row_w_) * scale;
+  double* row = block_.data() + buffered_;  // column-major: element (buffered_, c) at row[c * kBlockRows]
+  for (int k = 0; k < nnz; ++k) {
+    const int c = idx[k] < ncol ? column_[idx[k]] : -1;
+    if (c < 0) continue;
+    row[static_cast<Eigen::Index>(c) * kBlockRows] += f * val[k];
+    row_any_ = true;
+  }
+}
+
+void NormalEquations::end_row() {
+  if (gradient_only_ || !row_any_) return;
+  block_r_[buffered_] = std::sqrt(row_w_) * row_r_;
+  row_any_ = false;
   if (++buffered_ == kBlockRows) flush();
 }
 
@@ -67,6 +91,7 @@ void NormalEquations::flush() {
 }
 
 void NormalEquations::finalize() {
+  if (gradient_only_) return;
   flush();
   H_.triangularView<Eigen::StrictlyLower>() = H_.transpose().triangularView<Eigen::StrictlyLower>();
 }

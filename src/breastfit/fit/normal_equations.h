@@ -23,6 +23,9 @@ class NormalEquations {
   void set_active(const std::vector<int>& active);
   /// Zeroes H, g and the cost.
   void clear();
+  /// In gradient-only mode add_row accumulates g and the cost but not H (which keeps its last
+  /// value): a solver may reuse a Hessian for a few iterations at the price of one gradient.
+  void set_gradient_only(bool on) { gradient_only_ = on; }
   /// Number of active parameters (size of H and g).
   int size() const { return static_cast<int>(active_.size()); }
   const std::vector<int>& active() const { return active_; }
@@ -30,6 +33,12 @@ class NormalEquations {
   /// Adds weight · (r + Σ_k val_k δ_{idx_k})² : H += w vvᵀ, g += w r v, cost += w r².
   /// idx are full parameter indices; entries of inactive parameters are dropped.
   void add_row(const int* idx, const double* val, int nnz, double r, double weight);
+  /// A row assembled from parts (e.g. the corners of a triangle, weighted by barycentrics):
+  /// begin_row(r, w), any number of add_to_row(idx, val, nnz, scale) adding scale·val to the
+  /// row's coefficients (indices may repeat across parts), then end_row().
+  void begin_row(double r, double weight);
+  void add_to_row(const int* idx, const double* val, int nnz, double scale);
+  void end_row();
   /// Folds buffered rows into H and mirrors the upper triangle. Call once after all rows.
   void finalize();
 
@@ -50,6 +59,9 @@ class NormalEquations {
   Eigen::VectorXd block_r_;      // sqrt(w)·r per buffered row
   int buffered_ = 0;
   double cost_ = 0.0;
+  bool gradient_only_ = false;
+  double row_r_ = 0.0, row_w_ = 0.0;  // the row being assembled by begin_row/add_to_row
+  bool row_any_ = false;
 };
 
 }  // namespace breastfit::fit

@@ -47,6 +47,7 @@ class Problem {
   std::vector<Correspondence> pairs_;
   std::vector<ReverseCorrespondence> reverse_pairs_;
   CorrespondenceStats stats_, reverse_stats_;
+  std::vector<Index> hints_, reverse_hints_;  // warm starts of the closest-point searches
 };
 
 }  // namespace breastfit::fit

@@ -74,7 +74,7 @@ FitResult register_template(const model::RiggedModel& model, ScanTarget& scan, s
   problem.evaluator().set_params(params);
   problem.orient_scan_normals(options.correspondences.max_distance_start_mm);
 
-  const bool ok = solve_stages(problem, {options.rigid, options.pose, options.shape}, params, summary, on_iteration);
+  const bool ok = solve_stages(problem, {options.rigid, options.pose, options.shape, options.refine}, params, summary, on_iteration);
 
   // Final state: every vertex at the final threshold.
   const bool use_reverse = options.weights.lambda_reverse > 0 && options.correspondences.reverse_samples > 0;

@@ -5,8 +5,6 @@
 
 #include "breastfit/core/errors.h"
 #include "breastfit/core/rng.h"
-#include "breastfit/mesh/boundary.h"
-#include "breastfit/mesh/normals.h"
 #include "breastfit/spatial/closest_point_index.h"
 
 namespace breastfit::fit {
@@ -14,22 +12,15 @@ namespace breastfit::fit {
 ScanTarget::ScanTarget(const TriangleMesh& scan_mm, int num_samples) : mesh_(scan_mm) {
   if (mesh_.num_faces() == 0) throw InvalidInput("the scan has no triangles");
   index_ = std::make_unique<spatial::ClosestPointIndex>(mesh_);
-  vertex_normals_ = mesh::vertex_normals(mesh_);
-
-  // Area-uniform deterministic samples on faces that do not touch the open border.
-  const std::vector<bool> border = mesh::boundary_vertices(mesh_);
+  // Area-uniform deterministic samples.
   const Index nf = mesh_.num_faces();
   std::vector<double> cumulative(nf, 0.0);
   double total = 0.0;
   for (Index f = 0; f < nf; ++f) {
     const auto a = mesh_.F(f, 0), b = mesh_.F(f, 1), c = mesh_.F(f, 2);
-    double area = 0.0;
-    if (!border[a] && !border[b] && !border[c]) {
-      const Vec3 e1 = mesh_.V.row(b) - mesh_.V.row(a);
-      const Vec3 e2 = mesh_.V.row(c) - mesh_.V.row(a);
-      area = 0.5 * e1.cross(e2).norm();
-    }
-    total += area;
+    const Vec3 e1 = mesh_.V.row(b) - mesh_.V.row(a);
+    const Vec3 e2 = mesh_.V.row(c) - mesh_.V.row(a);
+    total += 0.5 * e1.cross(e2).norm();
     cumulative[f] = total;
   }
   if (num_samples > 0 && total > 0) {
@@ -56,10 +47,13 @@ ScanTarget::ScanTarget(ScanTarget&&) noexcept = default;
 
 Points ScanTarget::sample_normals() const { return normal_sign_ * sample_normals_; }
 
-std::optional<ScanMatch> ScanTarget::match(const Vec3& q, double max_dist) const {
-  auto cp = index_->closest_within(q, max_dist);
+std::optional<ScanMatch> ScanTarget::match(const Vec3& q, double max_dist, Index* hint_face) const {
+  auto cp = hint_face && *hint_face >= 0 ? index_->closest_within(q, max_dist, *hint_face)
+                                         : index_->closest_within(q, max_dist);
   if (!cp) return std::nullopt;
+  if (hint_face) *hint_face = cp->face;
   ScanMatch m;
+  m.face = cp->face;
   m.point = cp->point;
   m.normal = normal_sign_ * index_->smooth_normal(*cp);
   m.sq_dist = cp->sq_dist;
@@ -70,6 +64,7 @@ std::optional<ScanMatch> ScanTarget::match(const Vec3& q, double max_dist) const
 ScanMatch ScanTarget::closest(const Vec3& q) const {
   const auto cp = index_->closest(q);
   ScanMatch m;
+  m.face = cp.face;
   m.point = cp.point;
   m.normal = normal_sign_ * index_->smooth_normal(cp);
   m.sq_dist = cp.sq_dist;

@@ -18,6 +18,7 @@ struct ScanMatch {
   Vec3 point;          ///< closest point on the scan, mm
   Vec3 normal;         ///< unit surface normal there (oriented by normal_sign())
   double sq_dist = 0;  ///< squared distance query→point, mm²
+  Index face = 0;      ///< scan triangle holding `point`
   bool on_boundary = false;  ///< the closest feature lies on the scan's open border
 };
 
@@ -29,8 +30,10 @@ class ScanTarget {
   ~ScanTarget();
   ScanTarget(ScanTarget&&) noexcept;
 
-  /// Closest point within max_dist, or nullopt.
-  std::optional<ScanMatch> match(const Vec3& q, double max_dist) const;
+  /// Closest point within max_dist, or nullopt. `hint_face` (optional, in/out): a face to start
+  /// the search from (e.g. this query's face at the previous iteration; < 0 = none), updated to
+  /// the face found. The result does not depend on the hint, only the speed.
+  std::optional<ScanMatch> match(const Vec3& q, double max_dist, Index* hint_face = nullptr) const;
   /// Exact closest point (no radius).
   ScanMatch closest(const Vec3& q) const;
 
@@ -40,16 +43,13 @@ class ScanTarget {
 
   const TriangleMesh& mesh() const { return mesh_; }
   /// Deterministic area-uniform samples (points and unit normals, oriented by normal_sign())
-  /// of the scan, away from its open border, for the reverse term.
+  /// of the scan, for the reverse term.
   const Points& sample_points() const { return samples_; }
   Points sample_normals() const;
-  /// Vertex area-weighted normals of the scan (unoriented, as the triangles say).
-  const Points& vertex_normals() const { return vertex_normals_; }
 
  private:
   TriangleMesh mesh_;
   std::unique_ptr<spatial::ClosestPointIndex> index_;
-  Points vertex_normals_;
   Points samples_;
   Points sample_normals_;
   double normal_sign_ = 1.0;

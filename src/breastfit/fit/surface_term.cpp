@@ -50,15 +50,23 @@ double add_reverse_term(const model::PoseEvaluator& ev, const std::vector<Revers
                         double scale, NormalEquations* eq) {
   double cost = 0.0;
   RowScratch s;
+  const Triangles& F = ev.model().rest.F;
   for (const auto& c : pairs) {
     const Vec3 d = ev.surface_point(c.model_point) - c.source;
     const double w = scale * c.weight;
     const double r = c.normal.dot(d);
     cost += w * r * r;
-    if (eq) {
-      ev.surface_point_jacobian(c.model_point, s.jac);
-      add_point_rows(s.jac, d, c.normal, w, 0.0, *eq, s.vals);
+    if (!eq) continue;
+    // The row is Σ_corners bary_c · nᵀ ∂M_c/∂θ: assembled corner by corner (no merging).
+    eq->begin_row(r, w);
+    for (int corner = 0; corner < 3; ++corner) {
+      ev.vertex_jacobian(F(c.model_point.face, corner), s.jac);
+      const int nnz = static_cast<int>(s.jac.params.size());
+      s.vals.resize(nnz);
+      for (int k = 0; k < nnz; ++k) s.vals[k] = c.normal.dot(s.jac.columns[k]);
+      eq->add_to_row(s.jac.params.data(), s.vals.data(), nnz, c.model_point.bary[corner]);
     }
+    eq->end_row();
   }
   return cost;
 }

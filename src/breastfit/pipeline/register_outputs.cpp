@@ -9,6 +9,7 @@
 #include "breastfit/io/io.h"
 #include "breastfit/io/markups.h"
 #include "breastfit/model/params_json.h"
+#include "breastfit/transfer/drawing_outputs.h"
 
 namespace breastfit::pipeline {
 namespace fs = std::filesystem;
@@ -30,7 +31,8 @@ void write_json(const fs::path& path, const nlohmann::json& j) {
 }  // namespace
 
 std::vector<std::string> register_output_names() {
-  return {"fitted.ply", "landmarks.mrk.json", "drawings.mrk.json", "params.json", "report.json"};
+  return {"fitted.ply", "landmarks.mrk.json", "drawings.mrk.json", "drawings.ply", "drawings.obj",
+          "scan_painted.ply", "params.json", "report.json"};
 }
 
 void check_output_dir(const fs::path& dir, bool force, const std::vector<fs::path>& protected_paths) {
@@ -62,6 +64,9 @@ void write_register_outputs(const fs::path& dir, const RegisterResult& r, const 
   mo.units = r.scan.units == mesh::Units::Metres ? "m" : "mm";
   io::write_markups(dir / "landmarks.mrk.json", r.model_landmarks_mm, mo);
   io::write_markups(dir / "drawings.mrk.json", r.drawings_mm, mo);
+  transfer::write_drawings_ply(dir / "drawings.ply", r.drawings_on_scan, from_mm);
+  transfer::write_drawings_obj(dir / "drawings.obj", r.drawings_on_scan, from_mm);
+  transfer::write_scan_painted(dir / "scan_painted.ply", r.scan.mesh_mm, r.drawings_on_scan, from_mm);
 
   nlohmann::json params = model::params_to_json(model, r.fit.params);
   params["units_note"] = "translations in mm in the scan frame (converted from the file's units)";

@@ -20,19 +20,6 @@ Markups evaluate_landmarks(const model::RiggedModel& model, const Points& V) {
   return m;
 }
 
-Markups evaluate_drawings(const model::RiggedModel& model, const Points& V) {
-  Markups m;
-  for (const auto& d : model.drawings) {
-    Curve c;
-    c.name = d.name;
-    c.closed = d.closed;
-    c.points.resize(static_cast<Index>(d.points.size()), 3);
-    for (size_t i = 0; i < d.points.size(); ++i) c.points.row(i) = d.points[i].position(V, model.rest.F).transpose();
-    m.curves.push_back(std::move(c));
-  }
-  return m;
-}
-
 std::string fmt(double v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.1f", v);
@@ -73,7 +60,14 @@ RegisterResult register_scan(const RegisterRequest& req, const fit::IterationCal
   out.fitted_mm.V = out.fit.vertices;
   out.fitted_mm.F = req.model->rest.F;
   out.model_landmarks_mm = evaluate_landmarks(*req.model, out.fit.vertices);
-  out.drawings_mm = evaluate_drawings(*req.model, out.fit.vertices);
+  transfer::TransferOptions transfer_options;
+  transfer_options.reject_scan_border = !out.scan.was_point_cloud;
+  out.drawings_on_scan = transfer::transfer_drawings(*req.model, out.fit.vertices, scan, transfer_options);
+  out.drawings_mm = transfer::to_markups(out.drawings_on_scan);
+  for (const auto& c : out.drawings_on_scan)
+    if (c.supported_fraction < 0.5)
+      out.warnings.push_back("drawing '" + c.name + "': only " + fmt(100 * c.supported_fraction) + " % of it is on the scan");
+  out.breasts = transfer::measure_breasts(*req.model, out.fit.vertices);
   out.surface = metrics::distance_stats(metrics::surface_distances(out.fit.vertices, scan, !out.scan.was_point_cloud));
   out.landmarks = metrics::landmark_errors(*req.model, out.fit.vertices, out.fit.landmarks);
   return out;
@@ -95,6 +89,12 @@ nlohmann::json RegisterResult::report() const {
   j["table1"] = {{"surface_mm", metrics::to_json(surface)},
                  {"landmarks_mm", metrics::to_json(landmarks.stats)},
                  {"landmark_errors_mm", per_landmark}};
+  nlohmann::json curves = nlohmann::json::object();
+  for (const auto& c : drawings_on_scan)
+    curves[c.name] = {{"closed", c.closed}, {"points", c.points.rows()}, {"length_mm", c.length_mm},
+                      {"supported_fraction", c.supported_fraction}, {"mean_model_to_scan_mm", c.mean_model_to_scan_mm}};
+  j["drawings"] = curves;
+  j["breast_measurements"] = breasts.to_json();
   j["warnings"] = warnings;
   return j;
 }

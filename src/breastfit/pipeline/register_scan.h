@@ -14,6 +14,8 @@
 #include "breastfit/metrics/fit_errors.h"
 #include "breastfit/model/rigged_model.h"
 #include "breastfit/pipeline/scan_input.h"
+#include "breastfit/transfer/breast_measurements.h"
+#include "breastfit/transfer/drawing_transfer.h"
 
 namespace breastfit::pipeline {
 
@@ -31,7 +33,9 @@ struct RegisterResult {
   fit::FitResult fit;                   ///< parameters, posed vertices (mm), solver summary
   TriangleMesh fitted_mm;               ///< the posed template, mm, scanner frame
   Markups model_landmarks_mm;           ///< the template's landmarks on the fitted model
-  Markups drawings_mm;                  ///< the template's drawings on the fitted model
+  Markups drawings_mm;                  ///< the template's drawings transferred onto the scan (mm)
+  std::vector<transfer::TransferredCurve> drawings_on_scan;  ///< the same with support flags and statistics
+  transfer::BreastMeasurements breasts; ///< volumes, distances, symmetry
   metrics::DistanceStats surface;       ///< paper's surface error (fitted vertices → scan)
   metrics::LandmarkErrors landmarks;    ///< model landmarks vs input landmarks
   std::vector<std::string> warnings;    ///< everything the user should know

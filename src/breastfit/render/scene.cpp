@@ -77,10 +77,27 @@ ColorbarPlacement colorbar_placement(const ColorbarSpec& spec, const RenderOptio
 
 int pad_of(const RenderOptions& o) { return 4 * text_scale_of(o); }
 
+/// The title's font scale: one step above the text scale, smaller if the title would not fit.
+int title_scale(const RenderOptions& o) {
+  const int room = o.width - 2 * pad_of(o);
+  int s = text_scale_of(o) + 1;
+  while (s > 1 && text_size(o.title, s).width > room) --s;
+  return s;
+}
+
+/// The title, cut with ".." when even scale 1 does not fit the image width.
+std::string title_text(const RenderOptions& o) {
+  const int room = o.width - 2 * pad_of(o);
+  std::string t = o.title;
+  const int s = title_scale(o);
+  if (text_size(t, s).width <= room) return t;
+  while (!t.empty() && text_size(t + "..", s).width > room) t.pop_back();
+  return t + "..";
+}
+
 int title_bottom(const RenderOptions& o) {
   if (o.title.empty()) return 0;
-  const int s = text_scale_of(o) + 1;
-  return pad_of(o) + text_size(o.title, s).height;
+  return pad_of(o) + text_size(title_text(o), title_scale(o)).height;
 }
 
 Points frame_samples(const Scene& scene) {
@@ -190,7 +207,7 @@ void draw_labels(Image& img, const Scene& scene, const Rasterizer& raster, const
   }
 }
 
-void draw_orientation(Image& img, const Camera& cam, const Scene& scene, const RenderOptions& o) {
+void draw_orientation(Image& img, const Camera& cam, const RenderOptions& o) {
   const int s = text_scale_of(o);
   const Eigen::Matrix3d A = o.body_to_world.topLeftCorner<3, 3>();
   const Vec3 r = cam.right();
@@ -218,7 +235,6 @@ void draw_orientation(Image& img, const Camera& cam, const Scene& scene, const R
   const std::string caption = std::string(view_name(o.view)) + " view";
   const TextSize cs = text_size(caption, s);
   draw_text(img, o.width - pad_of(o) - cs.width, o.height - pad_of(o) - cs.height, caption, {120, 120, 120}, s);
-  (void)scene;
 }
 
 void draw_legend(Image& img, const Scene& scene, const RenderOptions& o) {
@@ -369,7 +385,7 @@ Image render_scene(const Scene& scene, const RenderOptions& o) {
   std::vector<Rect> occupied;
   const int pad = pad_of(o);
   if (!o.title.empty()) {
-    const TextSize ts = text_size(o.title, s + 1);
+    const TextSize ts = text_size(title_text(o), title_scale(o));
     occupied.push_back({0, 0, pad + ts.width + pad, pad + ts.height + pad});
   }
   if (const ScalarField* f = colorbar_field(scene, o)) {
@@ -382,8 +398,8 @@ Image render_scene(const Scene& scene, const RenderOptions& o) {
   }
   if (o.show_labels) draw_labels(img, scene, raster, o, occupied);
   if (o.show_legend) draw_legend(img, scene, o);
-  if (o.show_orientation) draw_orientation(img, cam, scene, o);
-  if (!o.title.empty()) draw_text(img, pad, pad, o.title, {20, 20, 20}, s + 1);
+  if (o.show_orientation) draw_orientation(img, cam, o);
+  if (!o.title.empty()) draw_text(img, pad, pad, title_text(o), {20, 20, 20}, title_scale(o));
   return img;
 }
 

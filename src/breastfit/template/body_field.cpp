@@ -125,8 +125,9 @@ BodyField::BodyField(const BodyParams& params) : params_(params) {
     u = (u - u.dot(fr.w) * fr.w).normalized();
     Vec3 v = fr.w.cross(u);
     if (v.z() < 0) v = -v;
-    fr.u = u;
-    fr.v = v;
+    const double roll = b.roll_deg * kDeg;
+    fr.u = std::cos(roll) * u - std::sin(roll) * v;
+    fr.v = std::cos(roll) * v + std::sin(roll) * u;
     fr.center = fr.base_center - b.sink * fr.w;
     fr.nipple = fr.center + b.depth * fr.w - b.ptosis_mm * fr.v;
   }

@@ -24,13 +24,14 @@ struct TrunkKnot {
 /// ptosis_mm * (forward fraction)^2.
 struct BreastParams {
   double base_x = 88.0;          ///< |x| of the base centre (on the chest wall), mm
-  double base_z = -186.0;        ///< z of the base centre, mm
+  double base_z = -178.0;        ///< z of the base centre, mm
   double axis_lateral_deg = 17;  ///< breast axis turned laterally from straight anterior, deg
   double axis_down_deg = 6;      ///< breast axis tilted caudally, deg
+  double roll_deg = 12;          ///< frame turned about the axis so that the lower pole lies medially, deg
   double radius_lateral = 62.0;  ///< semi-axis across (u), mm
-  double radius_upper = 74.0;    ///< semi-axis towards the head (v > 0), mm
-  double radius_lower = 66.0;    ///< semi-axis towards the feet (v < 0), mm
-  double depth = 80.0;           ///< semi-axis along the breast axis (w), mm
+  double radius_upper = 70.0;    ///< semi-axis towards the head (v > 0), mm
+  double radius_lower = 78.0;    ///< semi-axis towards the feet (v < 0), mm
+  double depth = 76.0;           ///< semi-axis along the breast axis (w), mm
   double sink = 30.0;            ///< the ellipsoid centre lies this far behind the base centre, mm
   double ptosis_mm = 10.0;       ///< drop of the apex (nipple) by the ptosis warp, mm
   double upper_slope = 0.3;      ///< 0 = elliptic upper pole; > 0 straighter slope (upper radius shrinks forwards)

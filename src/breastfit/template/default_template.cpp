@@ -24,7 +24,7 @@ void DefaultTemplateOptions::validate() const {
     throw InvalidInput("template options: drawing_spacing_mm must be in [1, 20]");
   if (!(weight_diffusion_mm2 > 0 && weight_diffusion_mm2 <= 1e5))
     throw InvalidInput("template options: weight_diffusion_mm2 must be in (0, 1e5]");
-  static_assert(sizeof(BreastParams) == 15 * sizeof(double), "BreastParams holds doubles only");
+  static_assert(sizeof(BreastParams) == 16 * sizeof(double), "BreastParams holds doubles only");
   static_assert(sizeof(ArmParams) == 10 * sizeof(double), "ArmParams holds doubles only");
   if (std::memcmp(&body.breast[0], &body.breast[1], sizeof(BreastParams)) != 0 ||
       std::memcmp(&body.arm[0], &body.arm[1], sizeof(ArmParams)) != 0)

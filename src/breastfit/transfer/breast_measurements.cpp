@@ -1,0 +1,222 @@
+#include "breastfit/transfer/breast_measurements.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <queue>
+#include <set>
+#include <string>
+
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+#include <nlohmann/json.hpp>
+
+#include "breastfit/core/errors.h"
+
+namespace breastfit::transfer {
+namespace {
+
+using SpMat = Eigen::SparseMatrix<double>;
+
+double signed_volume6(const Points& V, const Triangles& F) {
+  double s = 0;
+  for (Eigen::Index f = 0; f < F.rows(); ++f) {
+    const Vec3 a = V.row(F(f, 0)), b = V.row(F(f, 1)), c = V.row(F(f, 2));
+    s += a.dot(b.cross(c));
+  }
+  return s;
+}
+
+nlohmann::json opt(const std::optional<double>& v) { return v ? nlohmann::json(*v) : nlohmann::json(nullptr); }
+
+std::optional<double> ratio(const std::optional<double>& l, const std::optional<double>& r) {
+  if (!l || !r || std::abs(*r) < 1e-12) return std::nullopt;
+  return *l / *r;
+}
+
+}  // namespace
+
+void VolumeOptions::validate() const {
+  if (!(margin_mm >= 0) || !std::isfinite(margin_mm))
+    throw InvalidInput("VolumeOptions.margin_mm = " + std::to_string(margin_mm) + ": must be >= 0");
+}
+
+RegionVolume region_volume(const TriangleMesh& surface, const std::vector<Index>& region, const VolumeOptions& options) {
+  options.validate();
+  const ChestWallFill fill = options.fill;
+  const Index nv = surface.num_vertices();
+  if (region.empty()) throw InvalidInput("region_volume: empty region");
+  std::vector<std::set<Index>> nbr(static_cast<size_t>(nv));
+  for (Index f = 0; f < surface.num_faces(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const Index a = surface.F(f, k), b = surface.F(f, (k + 1) % 3);
+      if (a == b) continue;
+      nbr[static_cast<size_t>(a)].insert(b);
+      nbr[static_cast<size_t>(b)].insert(a);
+    }
+  // Grown region: Dijkstra along edges from the region, up to margin_mm.
+  std::vector<double> dist(static_cast<size_t>(nv), std::numeric_limits<double>::infinity());
+  using Item = std::pair<double, Index>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
+  for (Index v : region) {
+    if (v < 0 || v >= nv) throw InvalidInput("region_volume: vertex index " + std::to_string(v) + " out of range");
+    dist[static_cast<size_t>(v)] = 0;
+    queue.push({0.0, v});
+  }
+  while (!queue.empty()) {
+    const auto [d, v] = queue.top();
+    queue.pop();
+    if (d > dist[static_cast<size_t>(v)]) continue;
+    for (Index w : nbr[static_cast<size_t>(v)]) {
+      const double dw = d + (surface.V.row(v) - surface.V.row(w)).norm();
+      if (dw <= options.margin_mm && dw < dist[static_cast<size_t>(w)]) {
+        dist[static_cast<size_t>(w)] = dw;
+        queue.push({dw, w});
+      }
+    }
+  }
+  std::vector<int> slot(static_cast<size_t>(nv), -1);
+  int n_in = 0;
+  for (Index v = 0; v < nv; ++v)
+    if (std::isfinite(dist[static_cast<size_t>(v)])) slot[static_cast<size_t>(v)] = n_in++;
+  if (n_in >= nv) throw InvalidInput("region_volume: the region (with its margin) covers the whole mesh (no chest wall around it)");
+
+  // Uniform graph Laplacian L (symmetric: L = D − A over the mesh edges).
+  std::vector<Eigen::Triplet<double>> t;
+  for (Index v = 0; v < nv; ++v) {
+    t.emplace_back(v, v, static_cast<double>(nbr[static_cast<size_t>(v)].size()));
+    for (Index w : nbr[static_cast<size_t>(v)]) t.emplace_back(v, w, -1.0);
+  }
+  SpMat L(nv, nv);
+  L.setFromTriplets(t.begin(), t.end());
+  // Membrane: L x = 0 on the region's rows. Thin plate: minimise ‖L x‖² → Lᵀ L x = 0 there.
+  const SpMat M = fill == ChestWallFill::ThinPlate ? SpMat(SpMat(L.transpose()) * L) : L;
+
+  // Split M into free (region) / fixed columns for the rows of the region.
+  std::vector<Eigen::Triplet<double>> tii;
+  Points rhs = Points::Zero(n_in, 3);
+  for (int k = 0; k < M.outerSize(); ++k)
+    for (SpMat::InnerIterator it(M, k); it; ++it) {
+      const int r = slot[static_cast<size_t>(it.row())];
+      if (r < 0) continue;
+      const int c = slot[static_cast<size_t>(it.col())];
+      if (c >= 0) tii.emplace_back(r, c, it.value());
+      else rhs.row(r) -= it.value() * surface.V.row(it.col());
+    }
+  SpMat Mii(n_in, n_in);
+  Mii.setFromTriplets(tii.begin(), tii.end());
+  Eigen::SimplicialLDLT<SpMat> solver(Mii);
+  if (solver.info() != Eigen::Success)
+    throw InvalidInput("region_volume: singular chest-wall fill (is the region attached to the rest of the mesh?)");
+  RegionVolume out;
+  out.chest_wall = surface.V;
+  for (int c = 0; c < 3; ++c) {
+    const Eigen::VectorXd x = solver.solve(rhs.col(c));
+    if (solver.info() != Eigen::Success || !x.allFinite())
+      throw InvalidInput("region_volume: the chest-wall fill failed to solve");
+    for (Index v = 0; v < nv; ++v)
+      if (slot[static_cast<size_t>(v)] >= 0) out.chest_wall(v, c) = x[slot[static_cast<size_t>(v)]];
+  }
+  // Only faces touching the region differ between skin and fill.
+  std::vector<Index> faces;
+  for (Index f = 0; f < surface.num_faces(); ++f)
+    if (slot[static_cast<size_t>(surface.F(f, 0))] >= 0 || slot[static_cast<size_t>(surface.F(f, 1))] >= 0 ||
+        slot[static_cast<size_t>(surface.F(f, 2))] >= 0)
+      faces.push_back(f);
+  Triangles Fr(static_cast<Eigen::Index>(faces.size()), 3);
+  for (size_t i = 0; i < faces.size(); ++i) Fr.row(static_cast<Eigen::Index>(i)) = surface.F.row(faces[i]);
+  out.volume_mm3 = (signed_volume6(surface.V, Fr) - signed_volume6(out.chest_wall, Fr)) / 6.0;
+  return out;
+}
+
+BreastMeasurements measure_breasts(const model::RiggedModel& model, const Points& posed_mm, const VolumeOptions& options) {
+  if (posed_mm.rows() != model.num_vertices())
+    throw InvalidInput("measure_breasts: " + std::to_string(posed_mm.rows()) + " posed vertices for a model with " +
+                       std::to_string(model.num_vertices()));
+  BreastMeasurements m;
+  m.volume_options = options;
+  const Triangles& F = model.rest.F;
+  auto landmark = [&](const std::string& name) -> std::optional<Vec3> {
+    const auto i = model.landmark_index(name);
+    if (!i) return std::nullopt;
+    return model.landmarks[static_cast<size_t>(*i)].point.position(posed_mm, F);
+  };
+  const auto notch = landmark("sternal_notch");
+  const auto xiphoid = landmark("xiphoid");
+  Vec3 up(0, 0, 1);
+  if (notch && xiphoid && (*notch - *xiphoid).norm() > 1e-9) {
+    up = (*notch - *xiphoid).normalized();
+  } else {
+    m.warnings.push_back("sternal_notch or xiphoid missing: 'lowest' uses the +z axis of the fit");
+  }
+
+  TriangleMesh skin;
+  skin.V = posed_mm;
+  skin.F = F;
+  for (int side = 0; side < 2; ++side) {
+    const std::string s = side == 0 ? "R" : "L";
+    BreastSide& b = side == 0 ? m.right : m.left;
+    const auto nipple = landmark("nipple_" + s);
+    if (!nipple) m.warnings.push_back("landmark nipple_" + s + " missing");
+    if (nipple && notch) b.notch_to_nipple_mm = (*nipple - *notch).norm();
+
+    const model::Drawing* fold = nullptr;
+    for (const std::string name : {"imf_" + s, "breast_contour_" + s}) {
+      if (const auto i = model.drawing_index(name)) {
+        fold = &model.drawings[static_cast<size_t>(*i)];
+        break;
+      }
+    }
+    if (fold && !fold->points.empty()) {
+      Vec3 lowest = fold->points[0].position(posed_mm, F);
+      for (const auto& p : fold->points) {
+        const Vec3 x = p.position(posed_mm, F);
+        if (x.dot(up) < lowest.dot(up)) lowest = x;
+      }
+      b.imf_lowest_mm = lowest;
+      if (nipple) b.nipple_to_imf_mm = (*nipple - lowest).norm();
+    } else {
+      m.warnings.push_back("drawings imf_" + s + " and breast_contour_" + s + " missing");
+    }
+
+    const auto r = model.region_index("breast_" + s);
+    if (r && !model.regions[static_cast<size_t>(*r)].vertices.empty()) {
+      const RegionVolume rv = region_volume(skin, model.regions[static_cast<size_t>(*r)].vertices, options);
+      b.volume_ml = rv.volume_mm3 / 1000.0;
+      if (rv.volume_mm3 < 0) m.warnings.push_back("breast_" + s + " volume is negative (the skin lies under the chest-wall fill)");
+    } else {
+      m.warnings.push_back("region breast_" + s + " missing");
+    }
+  }
+  const auto nr = landmark("nipple_R"), nl = landmark("nipple_L");
+  if (nr && nl) m.inter_nipple_mm = (*nr - *nl).norm();
+  m.volume_ratio = ratio(m.left.volume_ml, m.right.volume_ml);
+  m.notch_to_nipple_ratio = ratio(m.left.notch_to_nipple_mm, m.right.notch_to_nipple_mm);
+  m.nipple_to_imf_ratio = ratio(m.left.nipple_to_imf_mm, m.right.nipple_to_imf_mm);
+  return m;
+}
+
+nlohmann::json BreastMeasurements::to_json() const {
+  auto side = [](const BreastSide& b) {
+    nlohmann::json j = {{"volume_ml", opt(b.volume_ml)},
+                        {"notch_to_nipple_mm", opt(b.notch_to_nipple_mm)},
+                        {"nipple_to_imf_mm", opt(b.nipple_to_imf_mm)}};
+    j["imf_lowest_mm"] = b.imf_lowest_mm ? nlohmann::json{b.imf_lowest_mm->x(), b.imf_lowest_mm->y(), b.imf_lowest_mm->z()}
+                                         : nlohmann::json(nullptr);
+    return j;
+  };
+  return {{"right", side(right)},
+          {"left", side(left)},
+          {"inter_nipple_mm", opt(inter_nipple_mm)},
+          {"symmetry_left_over_right",
+           {{"volume", opt(volume_ratio)}, {"notch_to_nipple", opt(notch_to_nipple_ratio)}, {"nipple_to_imf", opt(nipple_to_imf_ratio)}}},
+          {"chest_wall", volume_options.fill == ChestWallFill::ThinPlate ? "thin_plate" : "membrane"},
+          {"chest_wall_margin_mm", volume_options.margin_mm},
+          {"method",
+           "volume between the fitted breast region (template regions breast_R/L) and a chest-wall fill of the "
+           "region grown by a margin (thin plate continuing the chest wall, or harmonic membrane); straight-line distances on the fitted "
+           "model; lowest fold point along xiphoid->sternal_notch"},
+          {"warnings", warnings}};
+}
+
+}  // namespace breastfit::transfer

@@ -1,0 +1,171 @@
+#include "breastfit/transfer/drawing_outputs.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <string>
+
+#include "breastfit/core/errors.h"
+#include "breastfit/io/io.h"
+#include "breastfit/spatial/knn_index.h"
+#include "breastfit/transfer/polyline.h"
+
+namespace breastfit::transfer {
+namespace fs = std::filesystem;
+namespace {
+
+void check_factor(double from_mm) {
+  if (!(from_mm > 0) || !std::isfinite(from_mm))
+    throw InvalidInput("drawing outputs: from_mm must be > 0 (got " + std::to_string(from_mm) + ")");
+}
+
+std::ofstream open_out(const fs::path& path) {
+  std::ofstream f(path);
+  if (!f) throw IoError(path.string(), "cannot open for writing");
+  return f;
+}
+
+void finish(std::ofstream& f, const fs::path& path) {
+  f.flush();
+  if (!f) throw IoError(path.string(), "write failed (disk full?)");
+}
+
+std::string num(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.9g", v);
+  return buf;
+}
+
+// Names may not contain spaces in a PLY comment / OBJ object line.
+std::string token(const std::string& name) {
+  std::string t = name.empty() ? "curve" : name;
+  for (char& ch : t)
+    if (ch == ' ' || ch == '\t' || ch == '\n' || ch == '\r') ch = '_';
+  return t;
+}
+
+}  // namespace
+
+Rgb drawing_color(const std::string& name) {
+  if (name.rfind("breast_contour", 0) == 0) return {20, 60, 220};   // blue
+  if (name.rfind("imf", 0) == 0) return {0, 160, 60};               // green
+  if (name.rfind("sternum", 0) == 0) return {200, 20, 20};          // red
+  return {150, 0, 170};                                             // purple: anything else
+}
+
+void write_drawings_ply(const fs::path& path, const std::vector<TransferredCurve>& curves, double from_mm) {
+  check_factor(from_mm);
+  Eigen::Index nv = 0, ne = 0;
+  for (const auto& c : curves) {
+    const Eigen::Index n = c.points.rows();
+    nv += n;
+    ne += n < 2 ? 0 : (c.closed && n > 2 ? n : n - 1);
+  }
+  std::ofstream f = open_out(path);
+  f << "ply\nformat ascii 1.0\ncomment breastfit transferred drawings (polylines)\n";
+  Eigen::Index first = 0;
+  for (const auto& c : curves) {
+    f << "comment curve " << token(c.name) << " " << first << " " << c.points.rows() << " "
+      << (c.closed ? "closed" : "open") << "\n";
+    first += c.points.rows();
+  }
+  f << "element vertex " << nv << "\nproperty double x\nproperty double y\nproperty double z\n"
+    << "property uchar red\nproperty uchar green\nproperty uchar blue\n"
+    << "element edge " << ne << "\nproperty int vertex1\nproperty int vertex2\nend_header\n";
+  for (const auto& c : curves) {
+    const Rgb col = drawing_color(c.name);
+    for (Eigen::Index i = 0; i < c.points.rows(); ++i)
+      f << num(c.points(i, 0) * from_mm) << " " << num(c.points(i, 1) * from_mm) << " " << num(c.points(i, 2) * from_mm)
+        << " " << int(col[0]) << " " << int(col[1]) << " " << int(col[2]) << "\n";
+  }
+  first = 0;
+  for (const auto& c : curves) {
+    const Eigen::Index n = c.points.rows();
+    for (Eigen::Index i = 0; i + 1 < n; ++i) f << first + i << " " << first + i + 1 << "\n";
+    if (c.closed && n > 2) f << first + n - 1 << " " << first << "\n";
+    first += n;
+  }
+  finish(f, path);
+}
+
+void write_drawings_obj(const fs::path& path, const std::vector<TransferredCurve>& curves, double from_mm) {
+  check_factor(from_mm);
+  std::ofstream f = open_out(path);
+  f << "# breastfit transferred drawings (polylines)\n";
+  for (const auto& c : curves)
+    for (Eigen::Index i = 0; i < c.points.rows(); ++i)
+      f << "v " << num(c.points(i, 0) * from_mm) << " " << num(c.points(i, 1) * from_mm) << " "
+        << num(c.points(i, 2) * from_mm) << "\n";
+  Eigen::Index first = 1;  // OBJ indices are 1-based
+  for (const auto& c : curves) {
+    const Eigen::Index n = c.points.rows();
+    f << "o " << token(c.name) << "\n";
+    if (n >= 2) {
+      f << "l";
+      for (Eigen::Index i = 0; i < n; ++i) f << " " << first + i;
+      if (c.closed && n > 2) f << " " << first;
+      f << "\n";
+    }
+    first += n;
+  }
+  finish(f, path);
+}
+
+TriangleMesh paint_drawings(const TriangleMesh& scan_mm, const std::vector<TransferredCurve>& curves,
+                            const PaintOptions& options) {
+  if (!(options.width_mm > 0) || !std::isfinite(options.width_mm))
+    throw InvalidInput("PaintOptions.width_mm must be > 0 (got " + std::to_string(options.width_mm) + ")");
+  TriangleMesh out = scan_mm;
+  out.C.resize(scan_mm.V.rows(), 3);
+  for (Eigen::Index v = 0; v < out.C.rows(); ++v) out.C.row(v) << options.skin[0], options.skin[1], options.skin[2];
+  // Dense samples of every curve (spacing well below the band width), indexed once.
+  const double half = 0.5 * options.width_mm;
+  const double spacing = std::min(0.5, half);
+  std::vector<Points> samples;
+  std::vector<int> owner;
+  Eigen::Index total = 0;
+  for (size_t k = 0; k < curves.size(); ++k) {
+    if (curves[k].points.rows() == 0) continue;
+    samples.push_back(resample_polyline(curves[k].points, curves[k].closed, spacing));
+    owner.insert(owner.end(), static_cast<size_t>(samples.back().rows()), static_cast<int>(k));
+    total += samples.back().rows();
+  }
+  if (total == 0 || scan_mm.V.rows() == 0) return out;
+  Points all(total, 3);
+  Eigen::Index r = 0;
+  for (const auto& s : samples) {
+    all.middleRows(r, s.rows()) = s;
+    r += s.rows();
+  }
+  const spatial::KnnIndex index(all);
+  // A vertex within `half` of the polyline is within half + spacing/2 of a sample.
+  const double reach = half + 0.5 * spacing;
+  // Where bands overlap (e.g. a fold drawn along the contour) the later curve is painted on top.
+  std::vector<Index> near;
+  std::vector<double> sq;
+  for (Eigen::Index v = 0; v < scan_mm.V.rows(); ++v) {
+    const Vec3 q = scan_mm.V.row(v).transpose();
+    if (index.closest(q).sq_dist > reach * reach) continue;
+    index.radius_search(q, reach, near, sq);
+    int top = -1;
+    for (Index i : near) top = std::max(top, owner[static_cast<size_t>(i)]);
+    if (top < 0) continue;
+    const Rgb col = drawing_color(curves[static_cast<size_t>(top)].name);
+    out.C.row(v) << col[0], col[1], col[2];
+  }
+  return out;
+}
+
+void write_scan_painted(const fs::path& path, const TriangleMesh& scan_mm, const std::vector<TransferredCurve>& curves,
+                        double from_mm, const PaintOptions& options) {
+  check_factor(from_mm);
+  TriangleMesh painted = paint_drawings(scan_mm, curves, options);
+  painted.V *= from_mm;
+  painted.N.resize(0, 3);
+  io::MeshWriteOptions wo;
+  wo.colors = true;
+  io::write_mesh(path, painted, wo);
+}
+
+}  // namespace breastfit::transfer

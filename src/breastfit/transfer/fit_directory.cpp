@@ -1,0 +1,71 @@
+#include "breastfit/transfer/fit_directory.h"
+
+#include <cmath>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "breastfit/core/errors.h"
+#include "breastfit/io/io.h"
+#include "breastfit/model/params_json.h"
+#include "breastfit/model/pose_evaluator.h"
+
+namespace breastfit::transfer {
+namespace fs = std::filesystem;
+
+FitDirectory read_fit_directory(const fs::path& dir, const model::RiggedModel* model) {
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) throw IoError(dir.string(), "is not a directory (expected the --out of `breastfit register`)");
+  FitDirectory out;
+  out.dir = dir;
+  const fs::path report = dir / "report.json";
+  if (fs::exists(report, ec)) {
+    std::ifstream f(report);
+    nlohmann::json j;
+    try {
+      j = nlohmann::json::parse(f);
+    } catch (const nlohmann::json::exception& e) {
+      throw IoError(report.string(), std::string("not valid JSON: ") + e.what());
+    }
+    if (j.contains("units")) {
+      if (!j["units"].is_string() || (j["units"] != "mm" && j["units"] != "m"))
+        throw IoError(report.string(), "\"units\" must be \"mm\" or \"m\"");
+      out.units = j["units"].get<std::string>();
+    }
+  }
+  out.to_mm = out.units == "m" ? 1000.0 : 1.0;
+
+  const fs::path ply = dir / "fitted.ply";
+  const fs::path params = dir / "params.json";
+  const bool has_ply = fs::exists(ply, ec);
+  TriangleMesh from_file;
+  if (has_ply) {
+    from_file = io::read_mesh(ply);
+    from_file.V *= out.to_mm;
+  }
+  if (model && fs::exists(params, ec)) {
+    const model::PoseParams p = model::read_params_json(params, *model);
+    out.fitted_mm.V = model::pose_vertices(*model, p);
+    out.fitted_mm.F = model->rest.F;
+    out.from_params = true;
+    if (has_ply) {
+      if (from_file.V.rows() != out.fitted_mm.V.rows() || from_file.F.rows() != out.fitted_mm.F.rows())
+        throw IoError(ply.string(), "has " + std::to_string(from_file.V.rows()) + " vertices, the template " +
+                                        std::to_string(out.fitted_mm.V.rows()) +
+                                        ": the fit was made with another template (pass it with --template)");
+      const double extent = (out.fitted_mm.V.colwise().maxCoeff() - out.fitted_mm.V.colwise().minCoeff()).maxCoeff();
+      const double dev = (from_file.V - out.fitted_mm.V).rowwise().norm().maxCoeff();
+      if (!(dev <= 0.5 + 1e-5 * extent))
+        throw IoError(ply.string(), "differs from the template posed by params.json by up to " + std::to_string(dev) +
+                                        " mm: the fit was made with another template (pass it with --template)");
+    }
+    return out;
+  }
+  if (!has_ply) throw IoError(ply.string(), "missing (neither fitted.ply nor params.json with a template)");
+  out.fitted_mm = std::move(from_file);
+  out.fitted_mm.N.resize(0, 3);
+  if (out.fitted_mm.num_faces() == 0) throw IoError(ply.string(), "has no triangles");
+  return out;
+}
+
+}  // namespace breastfit::transfer

@@ -1,0 +1,60 @@
+#include "breastfit/transfer/fit_directory.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
+#include "breastfit/core/errors.h"
+#include "breastfit/io/io.h"
+#include "breastfit/model/params_json.h"
+#include "breastfit/model/pose_evaluator.h"
+#include "support/test_paths.h"
+#include "support/toy_model.h"
+
+namespace breastfit::transfer {
+namespace {
+
+namespace fs = std::filesystem;
+
+TEST(FitDirectory, ReadsParamsOrFittedPlyInTheReportUnits) {
+  const model::RiggedModel m = test::make_toy_model();
+  const fs::path dir = test::temp_dir() / "fit";
+  fs::create_directories(dir);
+  const model::PoseParams p = test::random_toy_pose(m, 9, 0.5);
+  model::write_params_json(dir / "params.json", m, p);
+  TriangleMesh fitted;
+  fitted.V = model::pose_vertices(m, p);
+  fitted.F = m.rest.F;
+  TriangleMesh in_m = fitted;
+  in_m.V *= 0.001;
+  io::write_mesh(dir / "fitted.ply", in_m);
+  std::ofstream(dir / "report.json") << R"({"units": "m", "time_s": 0.2})";
+
+  const FitDirectory exact = read_fit_directory(dir, &m);
+  EXPECT_TRUE(exact.from_params);
+  EXPECT_EQ(exact.units, "m");
+  EXPECT_DOUBLE_EQ(exact.to_mm, 1000.0);
+  EXPECT_LT((exact.fitted_mm.V - fitted.V).cwiseAbs().maxCoeff(), 1e-9);  // posed in double precision
+  EXPECT_TRUE(exact.fitted_mm.F == fitted.F);
+
+  const FitDirectory from_ply = read_fit_directory(dir);  // no template: fitted.ply in mm
+  EXPECT_FALSE(from_ply.from_params);
+  EXPECT_LT((from_ply.fitted_mm.V - fitted.V).cwiseAbs().maxCoeff(), 0.05);  // float32 file
+
+  // fitted.ply of another pose: refused with a template
+  TriangleMesh other = in_m;
+  other.V.array() += 0.01;  // 10 mm
+  io::write_mesh(dir / "fitted.ply", other);
+  EXPECT_THROW(read_fit_directory(dir, &m), IoError);
+  fs::remove(dir / "fitted.ply");
+  EXPECT_NO_THROW(read_fit_directory(dir, &m));  // params.json alone is enough with a template
+  EXPECT_THROW(read_fit_directory(dir), IoError);  // ... but not without
+  std::ofstream(dir / "report.json") << R"({"units": "inches"})";
+  EXPECT_THROW(read_fit_directory(dir, &m), IoError);
+  EXPECT_THROW(read_fit_directory(dir / "nope", &m), IoError);
+}
+
+}  // namespace
+}  // namespace breastfit::transfer
