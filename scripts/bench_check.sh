@@ -29,5 +29,7 @@ fi
 mkdir -p "$out"
 args=(--cases "$bench/cases" --work "$out/results" --out "$out/report.md" --json "$out/report.json")
 [ ${#only[@]} -gt 0 ] && args+=(--only "${only[@]}")
+landmarks_arg="--landmarks {landmarks}"
+[ ${#eval_flags[@]} -gt 0 ] && landmarks_arg=""
 /usr/bin/python3 "$bench/evaluate.py" "${args[@]}" "${eval_flags[@]}" \
-  --tool "$bin register {scan} --landmarks {landmarks} --out {out} --force --quiet $extra"
+  --tool "$bin register {scan} $landmarks_arg --out {out} --force --quiet $extra"

@@ -227,9 +227,14 @@ TEST(DrawingTransfer, AfterARealFitTransferIsNoWorseThanTheModelCurves) {
         const double d = curve_distance(tc.points, tc.closed, truth.points, truth.closed).mean_sym;
         (mode == ProjectionMode::ClosestPoint ? sum_closest : sum_normal) += d;
         if (mode == ProjectionMode::ClosestPoint) {
-          const Curve* model_curve = r.drawings_mm.find_curve(tc.name);
-          ASSERT_NE(model_curve, nullptr);
-          const double dm = curve_distance(model_curve->points, model_curve->closed, truth.points, truth.closed).mean_sym;
+          // The template's drawing on the fitted model, before any projection onto the scan.
+          const auto drawing_index = torso().drawing_index(tc.name);
+          ASSERT_TRUE(drawing_index.has_value());
+          const auto& drawing = torso().drawings[*drawing_index];
+          Points model_points(static_cast<Index>(drawing.points.size()), 3);
+          for (size_t k = 0; k < drawing.points.size(); ++k)
+            model_points.row(k) = drawing.points[k].position(r.fit.vertices, torso().rest.F).transpose();
+          const double dm = curve_distance(model_points, drawing.closed, truth.points, truth.closed).mean_sym;
           sum_model += dm;
           ++n;
           std::printf("  %s model %.2f closest %.2f", tc.name.c_str(), dm, d);

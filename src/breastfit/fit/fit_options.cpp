@@ -60,17 +60,18 @@ void check_keys(const nlohmann::json& j, const std::string& path, std::initializ
 }
 
 void read_stage(const nlohmann::json& j, const std::string& path, StageOptions& s) {
-  check_keys(j, path, {"global", "bones", "blendshapes", "max_iterations", "vertex_stride"});
+  check_keys(j, path, {"global", "bones", "blendshapes", "max_iterations", "vertex_stride", "use_data"});
   read(j, "global", path, s.global);
   read(j, "bones", path, s.bones);
   read(j, "blendshapes", path, s.blendshapes);
   read(j, "max_iterations", path, s.max_iterations);
   read(j, "vertex_stride", path, s.vertex_stride);
+  read(j, "use_data", path, s.use_data);
 }
 
 nlohmann::json stage_json(const StageOptions& s) {
   return {{"global", s.global}, {"bones", s.bones}, {"blendshapes", s.blendshapes},
-          {"max_iterations", s.max_iterations}, {"vertex_stride", s.vertex_stride}};
+          {"max_iterations", s.max_iterations}, {"vertex_stride", s.vertex_stride}, {"use_data", s.use_data}};
 }
 
 void validate_stage(const StageOptions& s) {
@@ -105,6 +106,7 @@ void FitOptions::validate() const {
   require(positive(c.kernel_scale_mm), "correspondences.kernel_scale_mm", c.kernel_scale_mm, "must be > 0");
   require(c.reverse_samples >= 0 && c.reverse_samples <= 1000000, "correspondences.reverse_samples", c.reverse_samples,
           "must be in [0, 1e6]");
+  validate_stage(landmark_pose);
   validate_stage(rigid);
   validate_stage(pose);
   validate_stage(shape);
@@ -119,7 +121,7 @@ void FitOptions::validate() const {
 }
 
 void update_from_json(FitOptions& o, const nlohmann::json& j) {
-  check_keys(j, "", {"weights", "correspondences", "rigid", "pose", "shape", "refine", "function_tolerance", "step_tolerance",
+  check_keys(j, "", {"weights", "correspondences", "landmark_pose", "rigid", "pose", "shape", "refine", "function_tolerance", "step_tolerance",
                      "initial_damping", "hessian_interval", "max_blendshapes", "max_landmarks", "use_landmarks", "landmark_warning_mm",
                      "max_surface_mae_mm", "min_kept_fraction"});
   if (auto it = j.find("weights"); it != j.end()) {
@@ -152,6 +154,7 @@ void update_from_json(FitOptions& o, const nlohmann::json& j) {
     read(*it, "kernel_scale_mm", p, c.kernel_scale_mm);
     read(*it, "reverse_samples", p, c.reverse_samples);
   }
+  if (auto it = j.find("landmark_pose"); it != j.end()) read_stage(*it, "landmark_pose.", o.landmark_pose);
   if (auto it = j.find("rigid"); it != j.end()) read_stage(*it, "rigid.", o.rigid);
   if (auto it = j.find("pose"); it != j.end()) read_stage(*it, "pose.", o.pose);
   if (auto it = j.find("shape"); it != j.end()) read_stage(*it, "shape.", o.shape);
@@ -182,6 +185,7 @@ nlohmann::json to_json(const FitOptions& o) {
         {"max_normal_angle_deg", c.max_normal_angle_deg}, {"reject_boundary", c.reject_boundary},
         {"point_to_point_weight", c.point_to_point_weight}, {"kernel", kernel_name(c.kernel)},
         {"kernel_scale_mm", c.kernel_scale_mm}, {"reverse_samples", c.reverse_samples}}},
+      {"landmark_pose", stage_json(o.landmark_pose)},
       {"rigid", stage_json(o.rigid)},
       {"pose", stage_json(o.pose)},
       {"shape", stage_json(o.shape)},

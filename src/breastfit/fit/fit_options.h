@@ -21,12 +21,12 @@ enum class RobustKernel { None, Huber, GemanMcClure };
 
 /// Weights of the energy terms: E = Σ term / λ (the paper's convention: smaller λ = stronger term).
 struct EnergyWeights {
-  double lambda_data = 1.0;          ///< λD, mm² (mean squared point-to-plane distance)
+  double lambda_data = 0.25;         ///< λD, mm² (mean squared point-to-plane distance)
   double lambda_reverse = 2.0;       ///< λR, mm²; ≤ 0 disables the reverse term
   double lambda_landmarks = 50.0;    ///< λL, mm² per landmark (sum over landmarks)
-  double lambda_scale = 0.05;        ///< λS (dimensionless)
-  double lambda_blendshapes = 2.0;   ///< λBS (dimensionless weights)
-  double lambda_joints = 0.2;        ///< λJ (rad², and (mm/τ)²)
+  double lambda_scale = 0.5;         ///< λS (dimensionless)
+  double lambda_blendshapes = 10.0;  ///< λBS (dimensionless weights)
+  double lambda_joints = 1.0;        ///< λJ (rad², and (mm/τ)²)
   double lambda_continuity = 0.05;   ///< λC, mm²
   double joint_translation_scale_mm = 10.0;  ///< τ in E_J
 };
@@ -52,15 +52,20 @@ struct StageOptions {
   bool blendshapes = false;  ///< blendshape weights
   int max_iterations = 10;   ///< outer (correspondence) iterations
   int vertex_stride = 1;     ///< use every n-th model vertex for the data term (speed in early stages)
+  bool use_data = true;      ///< false: landmarks and priors only (no correspondences)
 };
 
 struct FitOptions {
   EnergyWeights weights;
   CorrespondenceOptions correspondences;
+  /// Landmarks and priors only, before any correspondence: brings the arms and breasts near the
+  /// landmarks (e.g. arms abducted 90° on supine arm boards, 65° away from the template's pose),
+  /// where closest points alone would latch onto the wrong surface. Skipped without landmarks.
+  StageOptions landmark_pose{"landmark_pose", true, true, false, 8, 1, false};
   StageOptions rigid{"rigid", true, false, false, 8, 4};
   StageOptions pose{"pose", true, true, false, 10, 2};
-  StageOptions shape{"shape", true, true, true, 14, 2};
-  StageOptions refine{"refine", true, true, true, 4, 1};
+  StageOptions shape{"shape", true, true, true, 10, 2};
+  StageOptions refine{"refine", true, true, true, 3, 1};
   double function_tolerance = 1e-4;  ///< stop a stage when the relative energy decrease is below this
   double step_tolerance = 1e-6;      ///< stop a stage when the step's max-norm is below this
   double initial_damping = 1e-3;     ///< LM damping μ relative to diag(JᵀJ)

@@ -11,6 +11,7 @@
 #include "breastfit/fit/lm_solver.h"
 #include "breastfit/fit/problem.h"
 #include "breastfit/mesh/landmark_names.h"
+#include "breastfit/model/pose_evaluator.h"
 
 namespace breastfit::fit {
 namespace {
@@ -101,6 +102,39 @@ LandmarkInitialization initialize_from_landmarks(const model::RiggedModel& model
     targets = swapped;
   }
   return out;
+}
+
+void initialize_arms(const model::RiggedModel& model, const ScanTarget& scan, model::PoseParams& params) {
+  constexpr double kMissMm = 40.0;  // score of a vertex with nothing on the scan within this distance
+  for (const char* name : {"upper_arm_R", "upper_arm_L"}) {
+    const auto bone = model.bone_index(name);
+    if (!bone) continue;
+    // The vertices this bone mostly moves.
+    std::vector<Index> arm;
+    for (Index i = 0; i < model.weights.outerSize(); ++i)
+      for (model::SkinWeights::InnerIterator it(model.weights, i); it; ++it)
+        if (it.col() == *bone && it.value() > 0.6) arm.push_back(i);
+    if (arm.size() < 10) continue;
+    const Quat base = params.bones[*bone].rotation;
+    double best_score = std::numeric_limits<double>::infinity();
+    Quat best = base;
+    for (int deg = -40; deg <= 90; deg += 10) {
+      // Positive angles raise the arm: about +y (posterior) for the left arm, −y for the right.
+      const double sign = std::string(name).back() == 'L' ? 1.0 : -1.0;
+      params.bones[*bone].rotation = Quat(Eigen::AngleAxisd(sign * deg * M_PI / 180.0, Vec3::UnitY())) * base;
+      const Points V = model::pose_vertices(model, params);
+      double score = 0;
+      for (size_t k = 0; k < arm.size(); k += 2) {
+        const auto m = scan.match(V.row(arm[k]).transpose(), kMissMm);
+        score += m ? std::sqrt(m->sq_dist) : kMissMm;
+      }
+      if (score < best_score - 1e-9) {
+        best_score = score;
+        best = params.bones[*bone].rotation;
+      }
+    }
+    params.bones[*bone].rotation = best;
+  }
 }
 
 model::Similarity initialize_without_landmarks(const model::RiggedModel& model, ScanTarget& scan,

@@ -29,6 +29,12 @@ struct LandmarkInitialization {
 LandmarkInitialization initialize_from_landmarks(const model::RiggedModel& model,
                                                  std::vector<LandmarkTarget>& targets);
 
+/// Abduction of each upper arm (bones "upper_arm_R"/"upper_arm_L", about the antero-posterior
+/// axis through the shoulder joint) chosen by a coarse search against the scan: arms go from
+/// hanging (standing) to 90° on arm boards (supine), further than closest points can pull them.
+/// Bones that are missing are skipped. \pre params.global already places the template on the scan.
+void initialize_arms(const model::RiggedModel& model, const ScanTarget& scan, model::PoseParams& params);
+
 /// Landmark-free initialisation: principal axes of the scan and of the template, 24 axis
 /// assignments, a short rigid ICP from each, the best kept. Deterministic.
 model::Similarity initialize_without_landmarks(const model::RiggedModel& model, ScanTarget& scan,

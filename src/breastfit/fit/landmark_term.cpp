@@ -2,6 +2,12 @@
 
 namespace breastfit::fit {
 
+double landmark_weight(const std::string& name) {
+  if (name.rfind("lowest_breast", 0) == 0) return 0.25;
+  if (name.rfind("midaxillary", 0) == 0) return 0.5;
+  return 1.0;
+}
+
 double add_landmark_term(const model::PoseEvaluator& ev, const std::vector<LandmarkTarget>& targets, double scale,
                          NormalEquations* eq) {
   double cost = 0.0;
@@ -10,14 +16,15 @@ double add_landmark_term(const model::PoseEvaluator& ev, const std::vector<Landm
   for (const auto& t : targets) {
     const auto& sp = ev.model().landmarks[t.model_landmark].point;
     const Vec3 d = ev.surface_point(sp) - t.position;
-    cost += scale * d.squaredNorm();
+    const double w = scale * t.weight;
+    cost += w * d.squaredNorm();
     if (!eq) continue;
     ev.surface_point_jacobian(sp, jac);
     const int nnz = static_cast<int>(jac.params.size());
     vals.resize(nnz);
     for (int axis = 0; axis < 3; ++axis) {
       for (int k = 0; k < nnz; ++k) vals[k] = jac.columns[k][axis];
-      eq->add_row(jac.params.data(), vals.data(), nnz, d[axis], scale);
+      eq->add_row(jac.params.data(), vals.data(), nnz, d[axis], w);
     }
   }
   return cost;

@@ -14,9 +14,17 @@ struct LandmarkTarget {
   std::string name;
   int model_landmark = 0;        ///< index into RiggedModel::landmarks
   Vec3 position = Vec3::Zero();  ///< on the scan, mm
+  double weight = 1.0;           ///< relative weight (see landmark_weight)
 };
 
-/// scale · Σ_l ‖L_l(θ) − ℓ_l‖²; with `eq`, also its normal equations. Returns the cost.
+/// Relative weight of a landmark in the fit: 1 for material points (nipples, sternal notch,
+/// xiphoid, acromia, pectoral insertions); 0.5 for the mid-axillary points (a line, not a point);
+/// 0.25 for the lowest breast points, which are not material: they slide over the skin with the
+/// pose (on the hanging lower pole standing, at the fold supine), so a fixed template point can only
+/// approximate them.
+double landmark_weight(const std::string& name);
+
+/// scale · Σ_l weight_l ‖L_l(θ) − ℓ_l‖²; with `eq`, also its normal equations. Returns the cost.
 double add_landmark_term(const model::PoseEvaluator& ev, const std::vector<LandmarkTarget>& targets, double scale,
                          NormalEquations* eq);
 

@@ -40,14 +40,15 @@ bool solve_stages(Problem& problem, const std::vector<StageOptions>& stages, mod
   const auto& model = ev.model();
   const model::ParamLayout& layout = ev.layout();
   int num_stages = 0;
-  for (const auto& s : stages) num_stages += s.max_iterations > 0 ? 1 : 0;
+  for (const auto& s : stages) num_stages += s.max_iterations > 0 && s.use_data ? 1 : 0;
   const bool use_reverse = options.weights.lambda_reverse > 0 && options.correspondences.reverse_samples > 0;
 
   NormalEquations eq(layout.num_params());
   int stage_index = -1;
   for (const auto& stage : stages) {
     if (stage.max_iterations == 0) continue;
-    ++stage_index;
+    if (stage.use_data) ++stage_index;
+    const int schedule_index = std::max(stage_index, 0);
     StageSummary ss;
     ss.name = stage.name;
     ss.termination = Termination::MaxIterations;
@@ -57,15 +58,18 @@ bool solve_stages(Problem& problem, const std::vector<StageOptions>& stages, mod
     double damping = options.initial_damping;
     Eigen::MatrixXd A(na, na), Ad(na, na);
     Eigen::VectorXd b(na);
-    const double stage_end = threshold_at(options.correspondences, stage_index + 1, num_stages, 0, 1);
+    const double stage_end = threshold_at(options.correspondences, schedule_index + 1, num_stages, 0, 1);
     bool rebuild_next = true;
     for (int it = 0; it < stage.max_iterations; ++it) {
       const bool rebuild = rebuild_next || it % options.hessian_interval == 0;
       eq.set_gradient_only(!rebuild);
-      const double max_dist = threshold_at(options.correspondences, stage_index, num_stages, it, stage.max_iterations);
+      const double max_dist = threshold_at(options.correspondences, schedule_index, num_stages, it, stage.max_iterations);
       const bool final_threshold = max_dist <= stage_end * 1.0001;
       ev.set_params(params);
-      problem.update_correspondences(max_dist, stage.vertex_stride, use_reverse && stage.blendshapes);
+      if (stage.use_data)
+        problem.update_correspondences(max_dist, stage.vertex_stride, use_reverse && stage.blendshapes);
+      else
+        problem.clear_correspondences();
       eq.clear();
       const double e0 = problem.evaluate(&eq).total();
       eq.finalize();
@@ -117,7 +121,7 @@ bool solve_stages(Problem& problem, const std::vector<StageOptions>& stages, mod
       ss.iterations = it + 1;
       ss.final_energy = rec.energy_after;
       const double rel = (rec.energy_before - rec.energy_after) / std::max(rec.energy_before, 1e-300);
-      if (final_threshold && it > 0) {
+      if ((final_threshold || !stage.use_data) && it > 0) {
         if ((!rec.accepted && rebuild) || (rec.accepted && rel < options.function_tolerance)) {
           ss.termination = Termination::Converged;
           break;

@@ -25,6 +25,13 @@ void Problem::update_correspondences(double max_dist, int stride, bool with_reve
                                                   max_dist, &reverse_stats_, &reverse_hints_);
 }
 
+void Problem::clear_correspondences() {
+  pairs_.clear();
+  reverse_pairs_.clear();
+  stats_ = CorrespondenceStats{};
+  reverse_stats_ = CorrespondenceStats{};
+}
+
 EnergyBreakdown Problem::evaluate(NormalEquations* eq) const {
   const auto& w = options_.weights;
   EnergyBreakdown e;

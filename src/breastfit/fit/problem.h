@@ -26,6 +26,8 @@ class Problem {
 
   /// Recomputes correspondences at the evaluator's current pose (every `stride`-th vertex).
   void update_correspondences(double max_distance_mm, int stride, bool with_reverse);
+  /// Drops all correspondences (stages that use landmarks and priors only).
+  void clear_correspondences();
   /// Energy at the evaluator's current parameters; with `eq`, accumulates its normal equations.
   EnergyBreakdown evaluate(NormalEquations* eq) const;
 

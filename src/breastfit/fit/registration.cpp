@@ -33,7 +33,7 @@ std::vector<LandmarkTarget> match_landmarks(const model::RiggedModel& model,
     if (!idx)
       throw InvalidInput("landmark '" + name + "' is not a landmark of template '" + model.name +
                          "' (expected: " + landmark_name_list() + ")");
-    out.push_back({name, *idx, pos});
+    out.push_back({name, *idx, pos, landmark_weight(name)});
   }
   // The paper's order (kLandmarkNames), so that "the first n landmarks" is reproducible.
   std::stable_sort(out.begin(), out.end(), [](const LandmarkTarget& a, const LandmarkTarget& b) {
@@ -73,8 +73,12 @@ FitResult register_template(const model::RiggedModel& model, ScanTarget& scan, s
   Problem problem(model, scan, options, landmarks);
   problem.evaluator().set_params(params);
   problem.orient_scan_normals(options.correspondences.max_distance_start_mm);
+  initialize_arms(model, scan, params);
 
-  const bool ok = solve_stages(problem, {options.rigid, options.pose, options.shape, options.refine}, params, summary, on_iteration);
+  std::vector<StageOptions> stages;
+  if (landmarks.size() >= 3) stages.push_back(options.landmark_pose);
+  for (const auto& s : {options.rigid, options.pose, options.shape, options.refine}) stages.push_back(s);
+  const bool ok = solve_stages(problem, stages, params, summary, on_iteration);
 
   // Final state: every vertex at the final threshold.
   const bool use_reverse = options.weights.lambda_reverse > 0 && options.correspondences.reverse_samples > 0;
