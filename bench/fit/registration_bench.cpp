@@ -4,6 +4,8 @@
 // measures).
 #include <benchmark/benchmark.h>
 
+#include <memory>
+
 #include "breastfit/fit/lm_solver.h"
 #include "breastfit/fit/problem.h"
 #include "breastfit/fit/registration.h"
@@ -23,6 +25,9 @@ struct Fixture {
   TriangleMesh scan_mm;
   std::vector<std::pair<std::string, Vec3>> landmarks_mm;
   model::PoseParams start;
+  std::unique_ptr<fit::ScanTarget> scan;
+  fit::FitOptions options;
+  std::vector<fit::LandmarkTarget> targets;
 
   Fixture() {
     synth::SynthOptions so;
@@ -31,9 +36,17 @@ struct Fixture {
     scan_mm = pipeline::prepare_scan(c.scan, "synth", std::nullopt).mesh_mm;
     const double k = 1.0 / c.scale_mm_to_file_units;
     for (const auto& p : c.input_landmarks) landmarks_mm.emplace_back(p.name, p.position * k);
-    auto targets = fit::match_landmarks(model, landmarks_mm);
+    targets = fit::match_landmarks(model, landmarks_mm);
     start = model::PoseParams::identity(model);
     start.global = fit::initialize_from_landmarks(model, targets).similarity;
+    scan = std::make_unique<fit::ScanTarget>(scan_mm, options.correspondences.reverse_samples);
+  }
+
+  /// A problem at the landmark-initialised pose.
+  std::unique_ptr<fit::Problem> problem() {
+    auto p = std::make_unique<fit::Problem>(model, *scan, options, targets);
+    p->evaluator().set_params(start);
+    return p;
   }
 };
 
@@ -54,11 +67,8 @@ BENCHMARK(BM_ScanIndexBuild)->Unit(benchmark::kMillisecond);
 
 void BM_Correspondences(benchmark::State& state) {
   auto& f = fixture();
-  fit::ScanTarget scan(f.scan_mm, 800);
-  fit::FitOptions o;
-  const auto targets = fit::match_landmarks(f.model, f.landmarks_mm);
-  fit::Problem problem(f.model, scan, o, targets);
-  problem.evaluator().set_params(f.start);
+  const auto problem_ptr = f.problem();
+  fit::Problem& problem = *problem_ptr;
   for (auto _ : state) problem.update_correspondences(20.0, 1, state.range(0) != 0);
   state.counters["model_vertices"] = f.model.num_vertices();
   state.SetLabel(state.range(0) ? "model->scan + scan->model" : "model->scan");
@@ -67,11 +77,8 @@ BENCHMARK(BM_Correspondences)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 void BM_NormalEquationsAssembly(benchmark::State& state) {
   auto& f = fixture();
-  fit::ScanTarget scan(f.scan_mm, 800);
-  fit::FitOptions o;
-  const auto targets = fit::match_landmarks(f.model, f.landmarks_mm);
-  fit::Problem problem(f.model, scan, o, targets);
-  problem.evaluator().set_params(f.start);
+  const auto problem_ptr = f.problem();
+  fit::Problem& problem = *problem_ptr;
   problem.update_correspondences(20.0, 1, true);
   fit::NormalEquations eq(problem.evaluator().layout().num_params());
   for (auto _ : state) {
@@ -87,15 +94,12 @@ BENCHMARK(BM_NormalEquationsAssembly)->Unit(benchmark::kMillisecond);
 
 void BM_OneLmIteration(benchmark::State& state) {
   auto& f = fixture();
-  fit::ScanTarget scan(f.scan_mm, 800);
-  fit::FitOptions o;
-  const auto targets = fit::match_landmarks(f.model, f.landmarks_mm);
   fit::StageOptions stage{"bench", true, true, true, 1, 1};
   for (auto _ : state) {
-    fit::Problem problem(f.model, scan, o, targets);
+    const auto problem = f.problem();
     model::PoseParams p = f.start;
     fit::FitSummary s;
-    fit::solve_stages(problem, {stage}, p, s);
+    fit::solve_stages(*problem, {stage}, p, s);
     benchmark::DoNotOptimize(p.global.scale);
   }
 }

@@ -55,43 +55,6 @@ std::string_view trim(std::string_view s) {
   return s;
 }
 
-/// Bare NaN / Infinity / -Infinity outside strings -> quoted, so the JSON parses and the
-/// coordinate check can name the landmark (Python's json module writes these tokens).
-std::string quote_non_finite_tokens(std::string_view text) {
-  if (text.find("NaN") == std::string_view::npos && text.find("Infinity") == std::string_view::npos)
-    return std::string(text);
-  std::string out;
-  out.reserve(text.size() + 16);
-  bool in_string = false;
-  for (size_t i = 0; i < text.size(); ++i) {
-    const char c = text[i];
-    if (in_string) {
-      out += c;
-      if (c == '\\' && i + 1 < text.size()) out += text[++i];
-      else if (c == '"') in_string = false;
-      continue;
-    }
-    if (c == '"') {
-      in_string = true;
-      out += c;
-      continue;
-    }
-    bool replaced = false;
-    for (std::string_view tok : {std::string_view("NaN"), std::string_view("-Infinity"),
-                                 std::string_view("Infinity")}) {
-      if (text.substr(i, tok.size()) == tok) {
-        out += '"';
-        out += tok;
-        out += '"';
-        i += tok.size() - 1;
-        replaced = true;
-        break;
-      }
-    }
-    if (!replaced) out += c;
-  }
-  return out;
-}
 
 /// {name: [x, y, z]} in file order; duplicate keys are kept (validated later).
 std::vector<NamedPoint> parse_plain_json(const ordered_json& doc, const std::vector<std::string>& keys,
@@ -210,7 +173,7 @@ LandmarkSet read_landmarks(const std::filesystem::path& path, const LandmarkRead
     std::vector<std::string> keys;
     ordered_json doc;
     try {
-      doc = ordered_json::parse(quote_non_finite_tokens(text),
+      doc = ordered_json::parse(detail::quote_non_finite_tokens(text),
                                 [&](int depth, ordered_json::parse_event_t event, ordered_json& parsed) {
                                   if (depth == 1 && event == ordered_json::parse_event_t::key)
                                     keys.push_back(parsed.get<std::string>());

@@ -11,6 +11,7 @@
 #include <system_error>
 
 #include "breastfit/core/errors.h"
+#include "breastfit/io/detail/text.h"
 
 namespace breastfit::io {
 namespace {
@@ -31,48 +32,11 @@ std::string read_text(const std::filesystem::path& path) {
   return ss.str();
 }
 
-/// Replaces bare NaN / Infinity / -Infinity tokens outside strings by the strings "NaN",
-/// "Infinity", "-Infinity", so that the JSON parses and the coordinate check can name the point.
-std::string quote_non_finite_tokens(std::string_view text) {
-  if (text.find("NaN") == std::string_view::npos && text.find("Infinity") == std::string_view::npos)
-    return std::string(text);
-  std::string out;
-  out.reserve(text.size() + 16);
-  bool in_string = false;
-  for (size_t i = 0; i < text.size(); ++i) {
-    const char c = text[i];
-    if (in_string) {
-      out += c;
-      if (c == '\\' && i + 1 < text.size()) out += text[++i];
-      else if (c == '"') in_string = false;
-      continue;
-    }
-    if (c == '"') {
-      in_string = true;
-      out += c;
-      continue;
-    }
-    bool replaced = false;
-    for (std::string_view tok : {std::string_view("NaN"), std::string_view("-Infinity"),
-                                 std::string_view("Infinity")}) {
-      if (text.substr(i, tok.size()) == tok) {
-        out += '"';
-        out += tok;
-        out += '"';
-        i += tok.size() - 1;
-        replaced = true;
-        break;
-      }
-    }
-    if (!replaced) out += c;
-  }
-  return out;
-}
 
 json parse_json(std::string_view text, const std::string& source) {
   if (text.find_first_not_of(" \t\r\n") == std::string_view::npos) throw IoError(source, "empty file");
   try {
-    return json::parse(quote_non_finite_tokens(text));
+    return json::parse(detail::quote_non_finite_tokens(text));
   } catch (const json::parse_error& e) {
     std::string what = e.what();
     // "[json.exception.parse_error.101] parse error at line 3, column 5: ..." -> drop the prefix

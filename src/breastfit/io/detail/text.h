@@ -51,4 +51,9 @@ std::string format_double(double value);
 /// The shortest decimal text that parses back (as float) to exactly `value`.
 std::string format_float(float value);
 
+/// Replaces bare NaN / Infinity / -Infinity tokens outside JSON strings (as Python's json module
+/// writes them) by the strings "NaN", "Infinity", "-Infinity", so that the document parses and
+/// the coordinate check can name the point that holds them.
+std::string quote_non_finite_tokens(std::string_view text);
+
 }  // namespace breastfit::io::detail
