@@ -3,7 +3,6 @@
 namespace breastfit::fit {
 
 double landmark_weight(const std::string& name) {
-  if (name.rfind("lowest_breast", 0) == 0) return 0.25;
   if (name.rfind("midaxillary", 0) == 0) return 0.5;
   return 1.0;
 }
@@ -14,7 +13,7 @@ double add_landmark_term(const model::PoseEvaluator& ev, const std::vector<Landm
   model::PointJacobian jac;
   std::vector<double> vals;
   for (const auto& t : targets) {
-    const auto& sp = ev.model().landmarks[t.model_landmark].point;
+    const SurfacePoint& sp = t.sliding_point ? *t.sliding_point : ev.model().landmarks[t.model_landmark].point;
     const Vec3 d = ev.surface_point(sp) - t.position;
     const double w = scale * t.weight;
     cost += w * d.squaredNorm();

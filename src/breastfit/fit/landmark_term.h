@@ -1,6 +1,7 @@
 #pragma once
 /// \file The landmark term (paper eq. 9): squared distances between model landmarks and the
 /// landmarks placed on the scan.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -15,13 +16,14 @@ struct LandmarkTarget {
   int model_landmark = 0;        ///< index into RiggedModel::landmarks
   Vec3 position = Vec3::Zero();  ///< on the scan, mm
   double weight = 1.0;           ///< relative weight (see landmark_weight)
+  /// For a non-material landmark (sliding_landmarks.h): the model point chosen at the current
+  /// pose, used instead of the model landmark's fixed surface point.
+  std::optional<SurfacePoint> sliding_point;
 };
 
 /// Relative weight of a landmark in the fit: 1 for material points (nipples, sternal notch,
-/// xiphoid, acromia, pectoral insertions); 0.5 for the mid-axillary points (a line, not a point);
-/// 0.25 for the lowest breast points, which are not material: they slide over the skin with the
-/// pose (on the hanging lower pole standing, at the fold supine), so a fixed template point can only
-/// approximate them.
+/// xiphoid, acromia, pectoral insertions) and for the lowest breast points (matched by their
+/// sliding definition); 0.5 for the mid-axillary points (defined by a line, not a point).
 double landmark_weight(const std::string& name);
 
 /// scale · Σ_l weight_l ‖L_l(θ) − ℓ_l‖²; with `eq`, also its normal equations. Returns the cost.

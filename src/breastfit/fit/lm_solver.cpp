@@ -66,6 +66,7 @@ bool solve_stages(Problem& problem, const std::vector<StageOptions>& stages, mod
       const double max_dist = threshold_at(options.correspondences, schedule_index, num_stages, it, stage.max_iterations);
       const bool final_threshold = max_dist <= stage_end * 1.0001;
       ev.set_params(params);
+      problem.update_sliding_landmarks();
       if (stage.use_data)
         problem.update_correspondences(max_dist, stage.vertex_stride, use_reverse && stage.blendshapes);
       else

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "breastfit/fit/priors.h"
+#include "breastfit/fit/sliding_landmarks.h"
 #include "breastfit/fit/surface_term.h"
 #include "breastfit/mesh/normals.h"
 
@@ -23,6 +24,13 @@ void Problem::update_correspondences(double max_dist, int stride, bool with_reve
   if (with_reverse)
     reverse_pairs_ = find_reverse_correspondences(ev_.vertices(), model_.rest.F, scan_, options_.correspondences,
                                                   max_dist, &reverse_stats_, &reverse_hints_);
+}
+
+void Problem::update_sliding_landmarks() {
+  const Vec3 up = posed_vertical_axis(model_, ev_.params());
+  for (auto& t : landmarks_)
+    if (const auto region = sliding_landmark_region(t.name))
+      t.sliding_point = lowest_region_point(model_, ev_.vertices(), up, *region);
 }
 
 void Problem::clear_correspondences() {

@@ -24,6 +24,8 @@ class Problem {
   const FitOptions& options() const { return options_; }
   ScanTarget& scan() { return scan_; }
 
+  /// Re-chooses the model points of sliding landmarks (lowest breast points) at the current pose.
+  void update_sliding_landmarks();
   /// Recomputes correspondences at the evaluator's current pose (every `stride`-th vertex).
   void update_correspondences(double max_distance_mm, int stride, bool with_reverse);
   /// Drops all correspondences (stages that use landmarks and priors only).
@@ -44,7 +46,7 @@ class Problem {
   const model::RiggedModel& model_;
   ScanTarget& scan_;
   const FitOptions& options_;
-  const std::vector<LandmarkTarget>& landmarks_;
+  std::vector<LandmarkTarget> landmarks_;  // a copy: sliding landmarks are re-chosen per iteration
   model::PoseEvaluator ev_;
   std::vector<Correspondence> pairs_;
   std::vector<ReverseCorrespondence> reverse_pairs_;

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "breastfit/fit/sliding_landmarks.h"
+
 namespace breastfit::metrics {
 
 std::vector<double> surface_distances(const Points& V, const fit::ScanTarget& scan, bool skip_border) {
@@ -16,10 +18,10 @@ std::vector<double> surface_distances(const Points& V, const fit::ScanTarget& sc
 }
 
 LandmarkErrors landmark_errors(const model::RiggedModel& model, const Points& fitted_V,
-                               const std::vector<fit::LandmarkTarget>& targets) {
+                               const model::PoseParams& params, const std::vector<fit::LandmarkTarget>& targets) {
   LandmarkErrors out;
   for (const auto& t : targets) {
-    const Vec3 p = model.landmarks[t.model_landmark].point.position(fitted_V, model.rest.F);
+    const Vec3 p = fit::model_landmark_position(model, t.model_landmark, fitted_V, params);
     out.names.push_back(t.name);
     out.distances_mm.push_back((p - t.position).norm());
   }

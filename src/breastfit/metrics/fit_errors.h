@@ -24,8 +24,9 @@ struct LandmarkErrors {
   DistanceStats stats;
 };
 
-/// ‖L_l(fitted) − ℓ_l‖ for each input landmark; `fitted_V` are the posed template vertices (mm).
+/// ‖L_l(fitted) − ℓ_l‖ for each input landmark; `fitted_V` are the posed template vertices (mm) for
+/// `params` (sliding landmarks are evaluated by their definition, see fit/sliding_landmarks.h).
 LandmarkErrors landmark_errors(const model::RiggedModel& model, const Points& fitted_V,
-                               const std::vector<fit::LandmarkTarget>& targets);
+                               const model::PoseParams& params, const std::vector<fit::LandmarkTarget>& targets);
 
 }  // namespace breastfit::metrics

@@ -8,15 +8,17 @@
 #include "breastfit/core/errors.h"
 #include "breastfit/core/timer.h"
 #include "breastfit/fit/scan_target.h"
+#include "breastfit/fit/sliding_landmarks.h"
 #include "breastfit/mesh/landmark_names.h"
 #include "breastfit/mesh/units.h"
 
 namespace breastfit::pipeline {
 namespace {
 
-Markups evaluate_landmarks(const model::RiggedModel& model, const Points& V) {
+Markups evaluate_landmarks(const model::RiggedModel& model, const Points& V, const model::PoseParams& params) {
   Markups m;
-  for (const auto& lm : model.landmarks) m.points.push_back({lm.name, lm.point.position(V, model.rest.F)});
+  for (int l = 0; l < static_cast<int>(model.landmarks.size()); ++l)
+    m.points.push_back({model.landmarks[l].name, fit::model_landmark_position(model, l, V, params)});
   return m;
 }
 
@@ -59,7 +61,7 @@ RegisterResult register_scan(const RegisterRequest& req, const fit::IterationCal
   }
   out.fitted_mm.V = out.fit.vertices;
   out.fitted_mm.F = req.model->rest.F;
-  out.model_landmarks_mm = evaluate_landmarks(*req.model, out.fit.vertices);
+  out.model_landmarks_mm = evaluate_landmarks(*req.model, out.fit.vertices, out.fit.params);
   transfer::TransferOptions transfer_options;
   transfer_options.reject_scan_border = !out.scan.was_point_cloud;
   out.drawings_on_scan = transfer::transfer_drawings(*req.model, out.fit.vertices, scan, transfer_options);
@@ -69,7 +71,7 @@ RegisterResult register_scan(const RegisterRequest& req, const fit::IterationCal
       out.warnings.push_back("drawing '" + c.name + "': only " + fmt(100 * c.supported_fraction) + " % of it is on the scan");
   out.breasts = transfer::measure_breasts(*req.model, out.fit.vertices);
   out.surface = metrics::distance_stats(metrics::surface_distances(out.fit.vertices, scan, !out.scan.was_point_cloud));
-  out.landmarks = metrics::landmark_errors(*req.model, out.fit.vertices, out.fit.landmarks);
+  out.landmarks = metrics::landmark_errors(*req.model, out.fit.vertices, out.fit.params, out.fit.landmarks);
   return out;
 }
 
