@@ -1,0 +1,186 @@
+// `breastfit register` end to end on synthetic cases made by `breastfit synth` with the shipped
+// default template: outputs and units, refusal to overwrite, bad inputs, point clouds, swapped
+// labels, landmark-free fits.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "breastfit/io/io.h"
+#include "breastfit/mesh/units.h"
+#include "support/test_paths.h"
+
+namespace breastfit {
+namespace {
+
+namespace fs = std::filesystem;
+
+nlohmann::json read_json(const fs::path& p) {
+  std::ifstream f(p);
+  return nlohmann::json::parse(f);
+}
+
+// One synthetic case per (seed, units), made once per test program run.
+fs::path synth_case(int seed, const std::string& units) {
+  static const fs::path root = [] {
+    const fs::path r = fs::temp_directory_path() / ("breastfit_register_cases_" + std::to_string(::getpid()));
+    fs::create_directories(r);
+    return r;
+  }();
+  const fs::path dir = root / ("case_" + std::to_string(seed) + "_" + units);
+  if (!fs::exists(dir / "scan.ply")) {
+    std::string out;
+    const int rc = test::run_cli("synth --quiet --seed " + std::to_string(seed) + " --units " + units + " --out '" +
+                                     dir.string() + "'",
+                                 &out);
+    EXPECT_EQ(rc, 0) << out;
+  }
+  return dir;
+}
+
+TEST(RegisterCommand, WritesEveryOutputInTheScanUnits) {
+  if (test::cli_path().empty()) GTEST_SKIP() << "CLI not built";
+  for (const std::string units : {"mm", "m"}) {
+    const fs::path c = synth_case(5, units);
+    const fs::path out = test::temp_dir() / units;
+    std::string log;
+    ASSERT_EQ(test::run_cli("register '" + (c / "scan.ply").string() + "' --landmarks '" +
+                                (c / "landmarks.mrk.json").string() + "' --quiet --out '" + out.string() + "'",
+                            &log),
+              0)
+        << log;
+    for (const char* f : {"fitted.ply", "landmarks.mrk.json", "drawings.mrk.json", "drawings.ply", "drawings.obj",
+                          "scan_painted.ply", "params.json", "report.json"})
+      EXPECT_TRUE(fs::exists(out / f)) << f;
+    const auto report = read_json(out / "report.json");
+    EXPECT_GT(report["time_s"].get<double>(), 0.0);
+    EXPECT_EQ(report["units"], units == "mm" ? "mm" : "m");
+    EXPECT_LT(report["table1"]["surface_mm"]["mae"].get<double>(), 3.0);
+    EXPECT_LT(report["table1"]["landmarks_mm"]["mae"].get<double>(), 8.0);
+    const TriangleMesh fitted = io::read_mesh(out / "fitted.ply");
+    const double extent = mesh::max_extent(fitted.V);
+    if (units == "m") EXPECT_LT(extent, 2.0);
+    else EXPECT_GT(extent, 200.0);
+  }
+}
+
+TEST(RegisterCommand, NeverOverwritesWithoutForce) {
+  if (test::cli_path().empty()) GTEST_SKIP() << "CLI not built";
+  const fs::path c = synth_case(5, "mm");
+  const fs::path out = test::temp_dir();
+  std::ofstream(out / "report.json") << "mine";
+  std::string log;
+  const int rc = test::run_cli("register '" + (c / "scan.ply").string() + "' --landmarks '" +
+                                   (c / "landmarks.mrk.json").string() + "' --quiet --out '" + out.string() + "'",
+                               &log);
+  EXPECT_EQ(rc, 4) << log;
+  EXPECT_NE(log.find("--force"), std::string::npos) << log;
+  std::ifstream f(out / "report.json");
+  std::string content;
+  f >> content;
+  EXPECT_EQ(content, "mine");
+}
+
+TEST(RegisterCommand, BadInputsGiveOneLineAndANonZeroExit) {
+  if (test::cli_path().empty()) GTEST_SKIP() << "CLI not built";
+  const fs::path c = synth_case(5, "mm");
+  const fs::path dir = test::temp_dir();
+  std::string log;
+  // missing scan
+  EXPECT_EQ(test::run_cli("register '" + (dir / "nope.ply").string() + "' --out '" + (dir / "o1").string() + "'", &log), 4);
+  EXPECT_NE(log.find("nope.ply"), std::string::npos) << log;
+  // unknown landmark name
+  std::ofstream(dir / "bad.csv") << "belly_button,1,2,3\n";
+  EXPECT_EQ(test::run_cli("register '" + (c / "scan.ply").string() + "' --landmarks '" + (dir / "bad.csv").string() +
+                              "' --out '" + (dir / "o2").string() + "'",
+                          &log),
+            4);
+  EXPECT_NE(log.find("belly_button"), std::string::npos) << log;
+  // a scan that is far too small for a torso
+  TriangleMesh scan = io::read_mesh(c / "scan.ply");
+  scan.V *= 0.05;
+  io::write_mesh(dir / "tiny.ply", scan);
+  EXPECT_EQ(test::run_cli("register '" + (dir / "tiny.ply").string() + "' --units mm --out '" + (dir / "o3").string() + "'",
+                          &log),
+            3);
+  EXPECT_NE(log.find("not an upper torso"), std::string::npos) << log;
+  EXPECT_FALSE(fs::exists(dir / "o3" / "fitted.ply"));
+}
+
+TEST(RegisterCommand, CorrectsSwappedLeftRightLabelsWithAWarning) {
+  if (test::cli_path().empty()) GTEST_SKIP() << "CLI not built";
+  const fs::path c = synth_case(5, "mm");
+  const fs::path dir = test::temp_dir();
+  std::ifstream in(c / "landmarks.mrk.json");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  std::string text = ss.str();
+  // exchange every _R and _L label
+  for (auto [from, to] : {std::pair<std::string, std::string>{"_R\"", "_X\""}, {"_L\"", "_R\""}, {"_X\"", "_L\""}}) {
+    for (size_t p = text.find(from); p != std::string::npos; p = text.find(from, p + to.size())) text.replace(p, from.size(), to);
+  }
+  std::ofstream(dir / "swapped.mrk.json") << text;
+  std::string log;
+  ASSERT_EQ(test::run_cli("register '" + (c / "scan.ply").string() + "' --landmarks '" +
+                              (dir / "swapped.mrk.json").string() + "' --quiet --out '" + (dir / "out").string() + "'",
+                          &log),
+            0)
+      << log;
+  EXPECT_NE(log.find("swapped"), std::string::npos) << log;
+  EXPECT_LT(read_json(dir / "out" / "report.json")["table1"]["landmarks_mm"]["mae"].get<double>(), 8.0);
+}
+
+TEST(RegisterCommand, RegistersAPointCloud) {
+  if (test::cli_path().empty()) GTEST_SKIP() << "CLI not built";
+  const fs::path c = synth_case(5, "mm");
+  const fs::path dir = test::temp_dir();
+  TriangleMesh cloud = io::read_mesh(c / "scan.ply");
+  cloud.F.resize(0, 3);
+  io::write_mesh(dir / "cloud.ply", cloud);
+  std::string log;
+  ASSERT_EQ(test::run_cli("register '" + (dir / "cloud.ply").string() + "' --landmarks '" +
+                              (c / "landmarks.mrk.json").string() + "' --quiet --out '" + (dir / "out").string() + "'",
+                          &log),
+            0)
+      << log;
+  const auto report = read_json(dir / "out" / "report.json");
+  EXPECT_TRUE(report["point_cloud"].get<bool>());
+  EXPECT_LT(report["table1"]["surface_mm"]["mae"].get<double>(), 3.0);
+}
+
+TEST(RegisterCommand, WithoutLandmarksSaysWhichInitialisationItUsed) {
+  if (test::cli_path().empty()) GTEST_SKIP() << "CLI not built";
+  const fs::path c = synth_case(5, "mm");
+  const fs::path out = test::temp_dir() / "out";
+  std::string log;
+  const int rc = test::run_cli("register '" + (c / "scan.ply").string() + "' --quiet --out '" + out.string() + "'", &log);
+  ASSERT_TRUE(rc == 0 || rc == 5) << log;  // converged, or said clearly that it did not
+  const auto report = read_json(out / "report.json");
+  EXPECT_EQ(report["solver"]["initialization"], "landmark-free");
+  EXPECT_EQ(report["status"], rc == 0 ? "ok" : "not_converged");
+}
+
+TEST(RegisterCommand, IsDeterministic) {
+  if (test::cli_path().empty()) GTEST_SKIP() << "CLI not built";
+  const fs::path c = synth_case(5, "mm");
+  const fs::path dir = test::temp_dir();
+  std::string log;
+  for (const char* name : {"a", "b"})
+    ASSERT_EQ(test::run_cli("register '" + (c / "scan.ply").string() + "' --landmarks '" +
+                                (c / "landmarks.mrk.json").string() + "' --quiet --out '" + (dir / name).string() + "'",
+                            &log),
+              0);
+  for (const char* f : {"fitted.ply", "landmarks.mrk.json", "drawings.mrk.json", "params.json"}) {
+    std::ifstream a(dir / "a" / f, std::ios::binary), b(dir / "b" / f, std::ios::binary);
+    std::stringstream sa, sb;
+    sa << a.rdbuf();
+    sb << b.rdbuf();
+    EXPECT_EQ(sa.str(), sb.str()) << f;
+  }
+}
+
+}  // namespace
+}  // namespace breastfit
