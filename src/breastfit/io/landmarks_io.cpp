@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "breastfit/core/errors.h"
+#include "breastfit/io/detail/file_bytes.h"
 #include "breastfit/io/detail/text.h"
 #include "breastfit/io/markups.h"
 #include "breastfit/mesh/landmark_names.h"
@@ -23,18 +24,7 @@ namespace {
 
 using nlohmann::ordered_json;
 
-std::string read_text(const std::filesystem::path& path) {
-  const std::string name = path.string();
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) throw IoError(name, "file does not exist");
-  if (std::filesystem::is_directory(path, ec)) throw IoError(name, "is a directory, not a landmark file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw IoError(name, "cannot open for reading");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  if (in.bad()) throw IoError(name, "read failed");
-  return ss.str();
-}
+std::string read_text(const std::filesystem::path& path) { return detail::read_file_bytes(path, "landmark file"); }
 
 bool is_blank_text(std::string_view s) {
   return s.find_first_not_of(" \t\r\n\f\v") == std::string_view::npos;

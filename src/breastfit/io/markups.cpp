@@ -11,6 +11,7 @@
 #include <system_error>
 
 #include "breastfit/core/errors.h"
+#include "breastfit/io/detail/file_bytes.h"
 #include "breastfit/io/detail/text.h"
 
 namespace breastfit::io {
@@ -19,18 +20,7 @@ namespace {
 using nlohmann::json;
 using nlohmann::ordered_json;
 
-std::string read_text(const std::filesystem::path& path) {
-  const std::string name = path.string();
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) throw IoError(name, "file does not exist");
-  if (std::filesystem::is_directory(path, ec)) throw IoError(name, "is a directory, not a markups file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw IoError(name, "cannot open for reading");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  if (in.bad()) throw IoError(name, "read failed");
-  return ss.str();
-}
+std::string read_text(const std::filesystem::path& path) { return detail::read_file_bytes(path, "markups file"); }
 
 
 json parse_json(std::string_view text, const std::string& source) {

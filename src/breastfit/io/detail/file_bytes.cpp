@@ -9,7 +9,7 @@
 
 namespace breastfit::io::detail {
 
-std::string read_file_bytes(const std::filesystem::path& path) {
+std::string read_file_bytes(const std::filesystem::path& path, std::string_view what) {
   const std::string name = path.string();
   std::error_code ec;
   const auto status = std::filesystem::status(path, ec);
@@ -17,7 +17,7 @@ std::string read_file_bytes(const std::filesystem::path& path) {
     throw IoError(name, "file does not exist");
   }
   if (std::filesystem::is_directory(status)) {
-    throw IoError(name, "is a directory, not a mesh file");
+    throw IoError(name, "is a directory, not a " + std::string(what));
   }
   if (!std::filesystem::is_regular_file(status)) {
     throw IoError(name, "is not a regular file");

@@ -6,9 +6,9 @@
 
 namespace breastfit::io::detail {
 
-/// Reads a whole file into memory.
+/// Reads a whole file into memory. `what` names the expected kind in messages ("mesh file").
 /// \throws IoError(path, problem) when the path is missing, a directory or unreadable
-std::string read_file_bytes(const std::filesystem::path& path);
+std::string read_file_bytes(const std::filesystem::path& path, std::string_view what = "mesh file");
 
 /// Writes bytes to a file, replacing it.
 /// \throws IoError(path, problem) when the file cannot be created or written
