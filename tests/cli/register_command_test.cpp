@@ -6,6 +6,9 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <system_error>
+
+#include <unistd.h>
 
 #include <nlohmann/json.hpp>
 
@@ -23,10 +26,24 @@ nlohmann::json read_json(const fs::path& p) {
   return nlohmann::json::parse(f);
 }
 
+fs::path cases_root() {
+  return fs::temp_directory_path() / ("breastfit_register_cases_" + std::to_string(::getpid()));
+}
+
+// Removes the synthetic cases when the test program ends.
+class CasesCleanup : public ::testing::Environment {
+ public:
+  void TearDown() override {
+    std::error_code ec;
+    fs::remove_all(cases_root(), ec);
+  }
+};
+const auto* const kCleanup = ::testing::AddGlobalTestEnvironment(new CasesCleanup);
+
 // One synthetic case per (seed, units), made once per test program run.
 fs::path synth_case(int seed, const std::string& units) {
   static const fs::path root = [] {
-    const fs::path r = fs::temp_directory_path() / ("breastfit_register_cases_" + std::to_string(::getpid()));
+    const fs::path r = cases_root();
     fs::create_directories(r);
     return r;
   }();
