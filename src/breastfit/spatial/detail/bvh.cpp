@@ -60,16 +60,6 @@ struct Bin {
   std::int32_t count = 0;
 };
 
-std::uint64_t spread_bits_21(std::uint64_t x) {
-  x &= 0x1fffff;
-  x = (x | x << 32) & 0x1f00000000ffffULL;
-  x = (x | x << 16) & 0x1f0000ff0000ffULL;
-  x = (x | x << 8) & 0x100f00f00f00f00fULL;
-  x = (x | x << 4) & 0x10c30c30c30c30c3ULL;
-  x = (x | x << 2) & 0x1249249249249249ULL;
-  return x;
-}
-
 /// LBVH: sort by the Morton code of the box centres, split each range where the highest
 /// differing bit flips (equal codes: halve), then fit the boxes bottom-up. The depth is at most
 /// 63 bit levels plus log2(n) halvings.

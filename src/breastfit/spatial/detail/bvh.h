@@ -67,4 +67,15 @@ struct Bvh {
 /// Largest traversal stack any tree from Bvh::build needs (depth is capped during the build).
 inline constexpr int kBvhMaxStack = 128;
 
+/// Spreads the low 21 bits of x three apart (bit i → bit 3i): one axis of a 63-bit Morton code.
+inline std::uint64_t spread_bits_21(std::uint64_t x) {
+  x &= 0x1fffff;
+  x = (x | x << 32) & 0x1f00000000ffffULL;
+  x = (x | x << 16) & 0x1f0000ff0000ffULL;
+  x = (x | x << 8) & 0x100f00f00f00f00fULL;
+  x = (x | x << 4) & 0x10c30c30c30c30c3ULL;
+  x = (x | x << 2) & 0x1249249249249249ULL;
+  return x;
+}
+
 }  // namespace breastfit::spatial::detail

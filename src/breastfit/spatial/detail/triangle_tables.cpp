@@ -131,17 +131,6 @@ bool feature_on_boundary(ClosestFeature feature, std::uint8_t flags, Index v0, I
   return false;
 }
 
-namespace {
-std::uint64_t spread_bits_21(std::uint64_t x) {
-  x &= 0x1fffff;
-  x = (x | x << 32) & 0x1f00000000ffffULL;
-  x = (x | x << 16) & 0x1f0000ff0000ffULL;
-  x = (x | x << 8) & 0x100f00f00f00f00fULL;
-  x = (x | x << 4) & 0x10c30c30c30c30c3ULL;
-  x = (x | x << 2) & 0x1249249249249249ULL;
-  return x;
-}
-}  // namespace
 
 std::vector<std::uint32_t> morton_order(const Points& P) {
   const auto n = static_cast<std::size_t>(P.rows());
