@@ -77,7 +77,8 @@ fit::IterationCallback progress_printer(bool quiet) {
   };
 }
 
-void print_register_summary(std::ostream& os, const pipeline::RegisterResult& r, const std::string& out_dir) {
+void print_register_summary(std::ostream& os, const pipeline::RegisterResult& r, const std::string& out_dir,
+                            bool report_html) {
   char buf[512];
   const auto& s = r.fit.summary;
   std::snprintf(buf, sizeof buf,
@@ -99,7 +100,8 @@ void print_register_summary(std::ostream& os, const pipeline::RegisterResult& r,
   }
   os << "  outputs: " << out_dir
      << "/{fitted.ply, landmarks.mrk.json, drawings.mrk.json, drawings.ply, drawings.obj, scan_painted.ply, "
-        "params.json, report.json}\n";
+        "params.json, report.json"
+     << (report_html ? ", report.html" : "") << "}\n";
 }
 
 }  // namespace breastfit::cli

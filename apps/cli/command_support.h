@@ -34,7 +34,8 @@ std::optional<mesh::Units> parse_units_flag(const std::string& text);
 model::RiggedModel load_template(const std::string& path);
 /// One line per iteration on stderr unless quiet.
 fit::IterationCallback progress_printer(bool quiet);
-/// The human summary of a registration.
-void print_register_summary(std::ostream& os, const pipeline::RegisterResult& r, const std::string& out_dir);
+/// The human summary of a registration (`report_html`: report.html was written too).
+void print_register_summary(std::ostream& os, const pipeline::RegisterResult& r, const std::string& out_dir,
+                            bool report_html = true);
 
 }  // namespace breastfit::cli

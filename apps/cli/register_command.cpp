@@ -20,7 +20,7 @@ namespace breastfit::cli {
 void register_register(CLI::App& app, int& exit_code) {
   struct Args {
     std::string scan, landmarks, template_path, units = "auto", config, out;
-    bool force = false, quiet = false, no_landmarks = false;
+    bool force = false, quiet = false, no_landmarks = false, no_report_html = false;
     FitFlags fit;
   };
   auto args = std::make_shared<Args>();
@@ -36,6 +36,8 @@ void register_register(CLI::App& app, int& exit_code) {
   sub->add_option("--out,-o", args->out, "output directory (created)")->required();
   sub->add_flag("--force", args->force, "replace existing output files in --out");
   sub->add_flag("--quiet,-q", args->quiet, "no progress lines");
+  sub->add_flag("--no-report-html", args->no_report_html,
+                "do not write report.html (the human-readable report with images; saves its rendering time)");
   add_fit_flags(*sub, args->fit);
   sub->callback([args, &exit_code] {
     namespace fs = std::filesystem;
@@ -65,9 +67,11 @@ void register_register(CLI::App& app, int& exit_code) {
       exit_code = kExitNotConverged;
       return;
     }
-    pipeline::write_register_outputs(args->out, result, model, args->force, inputs);
+    pipeline::RegisterOutputOptions output_options;
+    output_options.report_html = !args->no_report_html;
+    pipeline::write_register_outputs(args->out, result, model, args->force, inputs, output_options);
     for (const auto& w : result.warnings) std::cerr << "breastfit: warning: " << w << "\n";
-    if (!args->quiet) print_register_summary(std::cout, result, args->out);
+    if (!args->quiet) print_register_summary(std::cout, result, args->out, output_options.report_html);
   });
 }
 

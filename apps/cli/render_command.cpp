@@ -18,6 +18,7 @@
 #include "breastfit/model/template_library.h"
 #include "breastfit/render/body_frame.h"
 #include "breastfit/render/scene.h"
+#include "breastfit/render/torso_overlays.h"
 #include "breastfit/template/default_template.h"
 #include "commands.h"
 
@@ -58,33 +59,9 @@ fs::path output_path(const std::string& out, render::View view, bool single) {
   return fs::path(prefix + "_" + std::string(render::view_name(view)) + ".png");
 }
 
-/// Overlay sizes for an image of `size` pixels: 6 px discs and 3 px lines at 1024.
-struct OverlaySizes {
-  double point_radius_px = 6.0;
-  double line_width_px = 3.0;
-  explicit OverlaySizes(int size)
-      : point_radius_px(std::max(3.0, size / 170.0)), line_width_px(std::max(2.0, size / 340.0)) {}
-};
-
-render::ScenePoint landmark_point(const std::string& name, const Vec3& p, const OverlaySizes& sizes) {
-  render::ScenePoint sp;
-  sp.label = name;
-  sp.position = p;
-  sp.colour = {215, 25, 32};
-  sp.radius_px = sizes.point_radius_px;
-  return sp;
-}
-
-void add_curve(render::Scene& scene, const std::string& name, bool closed, const Points& points,
-               const OverlaySizes& sizes) {
-  render::ScenePolyline l;
-  l.name = name;
-  l.points = points;
-  l.closed = closed;
-  l.colour = render::palette_colour(scene.polylines.size());
-  l.width_px = sizes.line_width_px;
-  scene.polylines.push_back(std::move(l));
-}
+using render::add_curve;
+using render::landmark_point;
+using render::OverlaySizes;
 
 /// Adds the landmarks of a file (positions converted to `scale_to_scene` × mm-or-declared units).
 void add_landmarks(render::Scene& scene, render::NamedPositions& named, const std::string& path,

@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <sstream>
 #include <system_error>
 
@@ -24,6 +25,13 @@ namespace fs = std::filesystem;
 nlohmann::json read_json(const fs::path& p) {
   std::ifstream f(p);
   return nlohmann::json::parse(f);
+}
+
+std::string read_text(const fs::path& p) {
+  std::ifstream f(p, std::ios::binary);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  return ss.str();
 }
 
 fs::path cases_root() {
@@ -70,7 +78,7 @@ TEST(RegisterCommand, WritesEveryOutputInTheScanUnits) {
               0)
         << log;
     for (const char* f : {"fitted.ply", "landmarks.mrk.json", "drawings.mrk.json", "drawings.ply", "drawings.obj",
-                          "scan_painted.ply", "params.json", "report.json"})
+                          "scan_painted.ply", "params.json", "report.json", "report.html"})
       EXPECT_TRUE(fs::exists(out / f)) << f;
     const auto report = read_json(out / "report.json");
     EXPECT_GT(report["time_s"].get<double>(), 0.0);
@@ -190,13 +198,36 @@ TEST(RegisterCommand, IsDeterministic) {
                                 (c / "landmarks.mrk.json").string() + "' --quiet --out '" + (dir / name).string() + "'",
                             &log),
               0);
-  for (const char* f : {"fitted.ply", "landmarks.mrk.json", "drawings.mrk.json", "params.json"}) {
-    std::ifstream a(dir / "a" / f, std::ios::binary), b(dir / "b" / f, std::ios::binary);
-    std::stringstream sa, sb;
-    sa << a.rdbuf();
-    sb << b.rdbuf();
-    EXPECT_EQ(sa.str(), sb.str()) << f;
-  }
+  for (const char* f : {"fitted.ply", "landmarks.mrk.json", "drawings.mrk.json", "params.json"})
+    EXPECT_EQ(read_text(dir / "a" / f), read_text(dir / "b" / f)) << f;
+  // report.html: identical but for the measured registration time.
+  const std::regex time_s("Registration time</th><td>[0-9.]+ s");
+  const std::string html_a = read_text(dir / "a" / "report.html"), html_b = read_text(dir / "b" / "report.html");
+  ASSERT_TRUE(std::regex_search(html_a, time_s));
+  EXPECT_EQ(std::regex_replace(html_a, time_s, "T"), std::regex_replace(html_b, time_s, "T"));
+}
+
+TEST(RegisterCommand, WritesAReportHtmlUnlessAskedNotTo) {
+  if (test::cli_path().empty()) GTEST_SKIP() << "CLI not built";
+  const fs::path c = synth_case(5, "mm");
+  const fs::path out = test::temp_dir() / "out";
+  const std::string cmd = "register '" + (c / "scan.ply").string() + "' --landmarks '" +
+                          (c / "landmarks.mrk.json").string() + "' --out '" + out.string() + "'";
+  std::string log;
+  ASSERT_EQ(test::run_cli(cmd, &log), 0) << log;
+  EXPECT_NE(log.find("report.html"), std::string::npos) << log;
+  const std::string html = read_text(out / "report.html");
+  EXPECT_NE(html.find((c / "scan.ply").string()), std::string::npos);
+  EXPECT_NE(html.find("data:image/png;base64,"), std::string::npos);
+  EXPECT_EQ(html.find("http://"), std::string::npos);
+  EXPECT_EQ(html.find("https://"), std::string::npos);
+  for (const char* curve : {"breast_contour_R", "breast_contour_L", "sternum"})
+    EXPECT_NE(html.find(curve), std::string::npos) << curve;
+  // --no-report-html with --force: no report, and the previous one is gone.
+  ASSERT_EQ(test::run_cli(cmd + " --force --no-report-html", &log), 0) << log;
+  EXPECT_FALSE(fs::exists(out / "report.html"));
+  EXPECT_TRUE(fs::exists(out / "report.json"));
+  EXPECT_EQ(log.find("report.html"), std::string::npos) << log;
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include "breastfit/io/io.h"
 #include "breastfit/io/markups.h"
 #include "breastfit/model/params_json.h"
+#include "breastfit/pipeline/report_html.h"
 #include "breastfit/transfer/drawing_outputs.h"
 
 namespace breastfit::pipeline {
@@ -32,7 +33,7 @@ void write_json(const fs::path& path, const nlohmann::json& j) {
 
 std::vector<std::string> register_output_names() {
   return {"fitted.ply", "landmarks.mrk.json", "drawings.mrk.json", "drawings.ply", "drawings.obj",
-          "scan_painted.ply", "params.json", "report.json"};
+          "scan_painted.ply", "params.json", "report.json", "report.html"};
 }
 
 void check_output_dir(const fs::path& dir, bool force, const std::vector<fs::path>& protected_paths) {
@@ -49,7 +50,7 @@ void check_output_dir(const fs::path& dir, bool force, const std::vector<fs::pat
 }
 
 void write_register_outputs(const fs::path& dir, const RegisterResult& r, const model::RiggedModel& model, bool force,
-                            const std::vector<fs::path>& protected_paths) {
+                            const std::vector<fs::path>& protected_paths, const RegisterOutputOptions& options) {
   check_output_dir(dir, force, protected_paths);
   std::error_code ec;
   fs::create_directories(dir, ec);
@@ -72,6 +73,12 @@ void write_register_outputs(const fs::path& dir, const RegisterResult& r, const 
   params["units_note"] = "translations in mm in the scan frame (converted from the file's units)";
   write_json(dir / "params.json", params);
   write_json(dir / "report.json", r.report());
+  if (options.report_html) {
+    write_report_html(dir / "report.html", r, model.name, options.figures);
+  } else {
+    fs::remove(dir / "report.html", ec);
+    if (ec) throw IoError((dir / "report.html").string(), "cannot remove the previous report: " + ec.message());
+  }
 }
 
 }  // namespace breastfit::pipeline

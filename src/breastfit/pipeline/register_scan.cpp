@@ -33,6 +33,7 @@ std::string fmt(double v) {
 RegisterResult register_scan(const RegisterRequest& req, const fit::IterationCallback& on_iteration) {
   if (!req.scan || !req.model) throw InvalidInput("register_scan: scan and model are required");
   RegisterResult out;
+  out.scan_name = req.scan_name;
   out.scan = prepare_scan(*req.scan, req.scan_name, req.units);
   out.warnings = out.scan.warnings;
   fit::FitOptions options = req.options;

@@ -29,6 +29,7 @@ struct RegisterRequest {
 };
 
 struct RegisterResult {
+  std::string scan_name;                ///< RegisterRequest::scan_name (the scan file, for reports)
   PreparedScan scan;                    ///< the scan in mm (and its units)
   fit::FitResult fit;                   ///< parameters, posed vertices (mm), solver summary
   TriangleMesh fitted_mm;               ///< the posed template, mm, scanner frame

@@ -1,0 +1,261 @@
+#include "breastfit/pipeline/report_figures.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <future>
+#include <limits>
+#include <utility>
+
+#include "breastfit/core/errors.h"
+#include "breastfit/fit/scan_target.h"
+#include "breastfit/mesh/cleanup.h"
+#include "breastfit/render/body_frame.h"
+#include "breastfit/render/torso_overlays.h"
+
+namespace breastfit::pipeline {
+namespace {
+
+/// A stretch of a transferred drawing whose points are all on the scan, or all off it.
+struct Run {
+  bool supported = true;
+  bool closed = false;  ///< the whole curve, closed, in one status
+  std::vector<Eigen::Index> points;
+};
+
+/// Splits a curve into runs by segment status (a segment is on the scan when both its ends are).
+std::vector<Run> runs_of(const transfer::TransferredCurve& c) {
+  const Eigen::Index n = c.points.rows();
+  if (n == 0) return {};
+  auto on = [&](Eigen::Index i) { return static_cast<size_t>(i) >= c.supported.size() || c.supported[i]; };
+  if (n == 1) return {{on(0), false, {0}}};
+  const bool wraps = c.closed && n > 2;
+  const Eigen::Index nseg = wraps ? n : n - 1;
+  auto seg_on = [&](Eigen::Index s) { return on(s) && on((s + 1) % n); };
+  bool uniform = true;
+  for (Eigen::Index s = 1; s < nseg && uniform; ++s) uniform = seg_on(s) == seg_on(0);
+  if (uniform) {
+    Run r{seg_on(0), wraps, {}};
+    for (Eigen::Index i = 0; i < n; ++i) r.points.push_back(i);
+    return {r};
+  }
+  // Start a closed curve at a change of status so that no run is cut at the array's end.
+  Eigen::Index start = 0;
+  if (wraps)
+    while (seg_on(start) == seg_on((start + nseg - 1) % nseg)) ++start;
+  std::vector<Run> runs;
+  for (Eigen::Index k = 0; k < nseg; ++k) {
+    const Eigen::Index s = (start + k) % n;
+    if (runs.empty() || runs.back().supported != seg_on(s)) runs.push_back({seg_on(s), false, {s}});
+    runs.back().points.push_back((s + 1) % n);
+  }
+  return runs;
+}
+
+Points rows_of(const Points& P, const std::vector<Eigen::Index>& idx) {
+  Points out(static_cast<Eigen::Index>(idx.size()), 3);
+  for (size_t i = 0; i < idx.size(); ++i) out.row(static_cast<Eigen::Index>(i)) = P.row(idx[i]);
+  return out;
+}
+
+/// Pale version of a drawing colour (the parts that follow the fitted model, not the scan).
+render::Rgb pale(render::Rgb c) { return render::mix(c, {255, 255, 255}, 0.5); }
+
+constexpr const char* kOffScanLegend = "pale: no scan under it";
+
+render::RenderOptions base_options(const ReportFigureOptions& o, const Eigen::Matrix4d& body_to_world) {
+  render::RenderOptions ro;
+  ro.width = o.size;
+  ro.height = o.size;
+  ro.supersample = o.supersample;
+  ro.text_scale = o.text_scale;
+  ro.body_to_world = body_to_world;
+  ro.margin = 0.04;
+  return ro;
+}
+
+render::BodyFrame body_frame_of(const RegisterResult& r) {
+  render::NamedPositions named;
+  for (const auto& p : r.model_landmarks_mm.points) named[p.name] = p.position;
+  return render::estimate_body_frame(r.fitted_mm, named);
+}
+
+/// The scan without the triangles that lie outside the fitted model's box (in the body frame)
+/// grown by kCropMarginMm: the table, background and far fragments, which would otherwise shrink
+/// the torso in the framed image. The whole scan when nothing would be left.
+constexpr double kCropMarginMm = 40.0;
+TriangleMesh scan_near_fit(const RegisterResult& r, const Eigen::Matrix4d& body_to_world) {
+  const TriangleMesh& scan = r.scan.mesh_mm;
+  const Eigen::Matrix4d world_to_body = body_to_world.inverse();
+  const Eigen::Matrix3d R = world_to_body.topLeftCorner<3, 3>();
+  const Vec3 t = world_to_body.topRightCorner<3, 1>();
+  Eigen::AlignedBox3d box;
+  for (Eigen::Index i = 0; i < r.fitted_mm.V.rows(); ++i) box.extend(R * r.fitted_mm.V.row(i).transpose() + t);
+  box.min().array() -= kCropMarginMm;
+  box.max().array() += kCropMarginMm;
+  std::vector<char> inside(static_cast<size_t>(scan.V.rows()));
+  for (Eigen::Index i = 0; i < scan.V.rows(); ++i) inside[i] = box.contains(R * scan.V.row(i).transpose() + t);
+  TriangleMesh out;
+  out.V = scan.V;
+  if (scan.has_normals()) out.N = scan.N;
+  if (scan.has_colors()) out.C = scan.C;
+  out.F.resize(scan.F.rows(), 3);
+  Eigen::Index kept = 0;
+  for (Eigen::Index f = 0; f < scan.F.rows(); ++f)
+    if (inside[scan.F(f, 0)] && inside[scan.F(f, 1)] && inside[scan.F(f, 2)]) out.F.row(kept++) = scan.F.row(f);
+  if (kept == 0) return scan;
+  out.F.conservativeResize(kept, 3);
+  mesh::remove_unreferenced_vertices(out);
+  return out;
+}
+
+}  // namespace
+
+void ReportFigureOptions::validate() const {
+  if (size < 64 || size > 8192)
+    throw InvalidInput("ReportFigureOptions: size must be in [64, 8192], got " + std::to_string(size));
+  if (supersample < 1 || supersample > 4)
+    throw InvalidInput("ReportFigureOptions: supersample must be in [1, 4], got " + std::to_string(supersample));
+  if (text_scale < 1 || text_scale > 16)
+    throw InvalidInput("ReportFigureOptions: text_scale must be in [1, 16], got " + std::to_string(text_scale));
+  if (!(distance_range_mm > 0) || !std::isfinite(distance_range_mm))
+    throw InvalidInput("ReportFigureOptions: distance_range_mm must be > 0, got " + std::to_string(distance_range_mm));
+}
+
+render::Rgb report_curve_colour(const std::string& name, size_t index) {
+  if (name.rfind("breast_contour", 0) == 0) return {20, 90, 200};  // blue
+  if (name.rfind("imf", 0) == 0) return {0, 140, 60};              // green
+  if (name.rfind("sternum", 0) == 0) return {200, 30, 130};        // magenta
+  static constexpr std::array<render::Rgb, 3> kOthers = {{
+      {110, 50, 200},  // purple
+      {0, 145, 160},   // teal
+      {60, 60, 60},    // dark grey
+  }};
+  return kOthers[index % kOthers.size()];
+}
+
+Eigen::VectorXd model_to_scan_distances(const RegisterResult& r) {
+  const Points& V = r.fitted_mm.V;
+  Eigen::VectorXd d(V.rows());
+  if (V.rows() == 0) return d;
+  const fit::ScanTarget scan(r.scan.mesh_mm, 0);
+  const bool skip_border = !r.scan.was_point_cloud;
+  for (Eigen::Index i = 0; i < V.rows(); ++i) {
+    const fit::ScanMatch m = scan.closest(V.row(i).transpose());
+    d[i] = skip_border && m.on_boundary ? std::numeric_limits<double>::quiet_NaN() : std::sqrt(m.sq_dist);
+  }
+  return d;
+}
+
+render::Scene overlay_scene(const RegisterResult& r, const ReportFigureOptions& o) {
+  render::OverlaySizes sizes(o.size);
+  sizes.line_width_px *= 1.3;  // drawings are the point of the figure: a little bolder than `render`
+  render::Scene scene;
+  scene.meshes.emplace_back();
+  scene.meshes.back().name = "scan";
+  scene.meshes.back().mesh = r.scan.mesh_mm.num_faces() > 0 && r.fitted_mm.V.rows() > 0
+                                 ? scan_near_fit(r, body_frame_of(r).body_to_world)
+                                 : r.scan.mesh_mm;
+
+  bool any_off_scan = false;
+  for (size_t k = 0; k < r.drawings_on_scan.size(); ++k) {
+    const auto& c = r.drawings_on_scan[k];
+    const render::Rgb colour = report_curve_colour(c.name, k);
+    std::vector<Run> runs = runs_of(c);
+    // The legend shows the first polyline of each name: put a run on the scan first.
+    std::stable_partition(runs.begin(), runs.end(), [](const Run& run) { return run.supported; });
+    bool named = false;
+    for (const Run& run : runs) {
+      render::ScenePolyline l;
+      l.name = named ? "" : c.name;
+      named = true;
+      l.points = rows_of(c.points, run.points);
+      l.closed = run.closed;
+      l.colour = run.supported ? colour : pale(colour);
+      l.width_px = run.supported ? sizes.line_width_px : std::max(1.5, 0.6 * sizes.line_width_px);
+      any_off_scan = any_off_scan || !run.supported;
+      scene.polylines.push_back(std::move(l));
+    }
+  }
+  if (any_off_scan) {
+    render::ScenePolyline legend_only;  // no points: only a legend entry
+    legend_only.name = kOffScanLegend;
+    legend_only.colour = pale({90, 90, 90});
+    legend_only.width_px = std::max(1.5, 0.6 * sizes.line_width_px);
+    scene.polylines.push_back(std::move(legend_only));
+  }
+  for (const auto& p : r.model_landmarks_mm.points) scene.points.push_back(render::landmark_point(p.name, p.position, sizes));
+  return scene;
+}
+
+ReportFigures render_report_figures(const RegisterResult& r, const ReportFigureOptions& o) {
+  o.validate();
+  if (r.fitted_mm.V.rows() == 0 || r.scan.mesh_mm.V.rows() == 0)
+    throw InvalidInput("render_report_figures: the result has no fitted model or no scan");
+  ReportFigures out;
+  const render::BodyFrame frame = body_frame_of(r);
+  out.body_frame = frame.description;
+
+  const render::Scene scene = overlay_scene(r, o);
+
+  out.figures.resize(3);
+  out.figures[0] = {"front", "Front: scan, fitted landmarks, drawings",
+                    "The scan seen from the front (the patient's right on the left of the image) with the fitted "
+                    "model's landmarks (red) and the template's drawings transferred onto the scan: breast contours "
+                    "blue, inframammary folds green, sternum magenta. Scan parts far outside the torso (table, "
+                    "background) are left out.",
+                    {}, {}};
+  out.figures[1] = {"oblique", "Oblique (front-right)",
+                    "The same from the patient's front-right, 45 degrees: the lateral side of the right breast and "
+                    "its fold. Parts hidden behind the body are drawn faded.",
+                    {}, {}};
+  out.figures[2] = {"distance", "Fitted model: distance to the scan",
+                    "The fitted model coloured by its distance to the scan (dark: close, yellow: far; everything "
+                    "beyond the colour bar's range is yellow). Grey: no scan to compare with (holes, beyond the "
+                    "scanned area).",
+                    {}, {}};
+
+  auto overlay_figure = [&](ReportFigure& f, render::View view) {
+    render::RenderOptions ro = base_options(o, frame.body_to_world);
+    ro.view = view;
+    ro.title = f.title;
+    f.image = render::render_scene(scene, ro);
+    f.png = f.image.encode_png();
+  };
+  auto distance_figure = [&](ReportFigure& f) {
+    out.distances_mm = model_to_scan_distances(r);
+    render::Scene dist;
+    dist.meshes.emplace_back();
+    dist.meshes.back().name = "fitted";
+    dist.meshes.back().mesh = r.fitted_mm;
+    render::ScalarField field;
+    field.values = out.distances_mm;
+    field.map = render::Colormap::Viridis;
+    field.lo = 0.0;
+    field.hi = o.distance_range_mm;
+    field.units = "mm";
+    field.label = "distance";
+    dist.meshes.back().scalars = std::move(field);
+    render::RenderOptions ro = base_options(o, frame.body_to_world);
+    ro.view = render::View::Front;
+    ro.title = f.title;
+    f.image = render::render_scene(dist, ro);
+    f.png = f.image.encode_png();
+  };
+  // Each figure is rendered by one thread from shared read-only inputs into its own slot, so the
+  // pixels do not depend on `parallel`.
+  if (o.parallel) {
+    auto front = std::async(std::launch::async, [&] { overlay_figure(out.figures[0], render::View::Front); });
+    auto oblique = std::async(std::launch::async, [&] { overlay_figure(out.figures[1], render::View::Oblique); });
+    distance_figure(out.figures[2]);
+    front.get();
+    oblique.get();
+  } else {
+    overlay_figure(out.figures[0], render::View::Front);
+    overlay_figure(out.figures[1], render::View::Oblique);
+    distance_figure(out.figures[2]);
+  }
+  return out;
+}
+
+}  // namespace breastfit::pipeline
