@@ -53,8 +53,14 @@ double directed_mean(const Points& from, const Curve& to) {
 TruthErrors truth_errors(const Points& fitted_V, const TriangleMesh& truth, const fit::ScanTarget& scan,
                          const std::vector<NamedPoint>& model_landmarks,
                          const std::vector<NamedPoint>& truth_landmarks, double observed_mm) {
+  return truth_errors(fitted_V, spatial::ClosestPointIndex(truth), scan, model_landmarks, truth_landmarks,
+                      observed_mm);
+}
+
+TruthErrors truth_errors(const Points& fitted_V, const spatial::ClosestPointIndex& index, const fit::ScanTarget& scan,
+                         const std::vector<NamedPoint>& model_landmarks,
+                         const std::vector<NamedPoint>& truth_landmarks, double observed_mm) {
   TruthErrors out;
-  const spatial::ClosestPointIndex index(truth);
   std::vector<double> d;
   for (Index i = 0; i < fitted_V.rows(); ++i) {
     const auto cp = index.closest(fitted_V.row(i).transpose());

@@ -9,6 +9,10 @@
 #include "breastfit/mesh/landmarks.h"
 #include "breastfit/metrics/distance_stats.h"
 
+namespace breastfit::spatial {
+class ClosestPointIndex;
+}
+
 namespace breastfit::metrics {
 
 struct TruthErrors {
@@ -22,6 +26,12 @@ struct TruthErrors {
 /// \param model_landmarks / truth_landmarks  paired by name, mm
 TruthErrors truth_errors(const Points& fitted_V, const TriangleMesh& truth, const fit::ScanTarget& scan,
                          const std::vector<NamedPoint>& model_landmarks,
+                         const std::vector<NamedPoint>& truth_landmarks, double observed_mm = 5.0);
+
+/// The same with the truth's closest-point index built once by the caller (experiments score
+/// many fits of one case against the same truth).
+TruthErrors truth_errors(const Points& fitted_V, const spatial::ClosestPointIndex& truth_index,
+                         const fit::ScanTarget& scan, const std::vector<NamedPoint>& model_landmarks,
                          const std::vector<NamedPoint>& truth_landmarks, double observed_mm = 5.0);
 
 /// Mean symmetric distance between two polylines (each resampled every `spacing_mm`, exact
