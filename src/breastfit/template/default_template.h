@@ -17,7 +17,7 @@ struct DefaultTemplateOptions {
   double grid_step_mm = 7.0;          ///< marching-tetrahedra grid step (<= 0.75 target_edge_mm)
   int remesh_iterations = 10;         ///< isotropic remeshing rounds
   double drawing_spacing_mm = 5.0;    ///< spacing of the drawing points
-  double weight_diffusion_mm2 = 500;  ///< heat-diffusion time of the skin weights (blur ~ sqrt(4t))
+  double weight_diffusion_mm2 = 250;  ///< heat-diffusion time of the skin weights (blur ~ sqrt(4t) ~ 32 mm)
   BodyParams body{};                  ///< the anatomy; must be left-right symmetric
 
   /// \throws InvalidInput naming the bad field.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "breastfit/core/errors.h"
 #include "breastfit/mesh/landmark_names.h"
@@ -139,11 +140,18 @@ TemplateAnnotations template_annotations(const TemplateMesh& tm, const BodyField
   lm[0] = start_of(sternum.segments.front());
   lm[1] = end_of(sternum.segments.back());
 
-  // Breast contours: footprint boundary = iso-line of the breast height.
+  // Breast contours: the footprint is where the skin lies within footprint_margin_mm of the
+  // breast's own ellipsoid (the gland), so the long gentle blend of the upper pole into the
+  // chest wall is not counted as breast (with a skin-height threshold the contour sat ~15 mm
+  // too high and too far towards the axilla).
+  Eigen::VectorXd gland(m.num_vertices());
+  for (Index v = 0; v < m.num_vertices(); ++v)
+    gland[v] = -field.breast_value(m.V.row(v).transpose(), m.V(v, 0) < 0 ? 0 : 1);
+  const double fp_level = -o.footprint_margin_mm;
   std::array<std::vector<SurfacePoint>, 2> contour;
   for (int side = 0; side < 2; ++side) {
     const double s = side == 0 ? -1.0 : 1.0;
-    auto lines = iso_lines(m, bh, o.footprint_height_mm);
+    auto lines = iso_lines(m, gland, fp_level);
     const SurfacePath* best = nullptr;
     double best_len = 0;
     for (const auto& l : lines) {
@@ -181,7 +189,7 @@ TemplateAnnotations template_annotations(const TemplateMesh& tm, const BodyField
     contour[side] = std::move(pts);
   }
 
-  // Lowest breast point: min z over the footprint (contour and inside vertices).
+  // Lowest breast point: min z over the breast mound; folds: the lower part of the contour.
   std::array<std::vector<SurfacePoint>, 2> imf;
   for (int side = 0; side < 2; ++side) {
     const double s = side == 0 ? -1.0 : 1.0;
@@ -195,8 +203,18 @@ TemplateAnnotations template_annotations(const TemplateMesh& tm, const BodyField
       if (std::abs(P[i].x()) < std::abs(P[med].x())) med = i;
       if (std::abs(P[i].x()) > std::abs(P[lat].x())) lat = i;
     }
+    // Over the mound (skin lifted by the breast) including its border, which reaches lower
+    // than the gland contour.
     SurfacePoint lowest = c[lo];
-    double zmin = P[lo].z();
+    double zmin = std::numeric_limits<double>::infinity();
+    for (const auto& line : iso_lines(m, bh, o.footprint_height_mm))
+      for (const auto& sg : line.segments) {
+        const Vec3 a = segment_point(m, sg, 0);
+        if (a.x() * s > 0 && a.z() < zmin) {
+          zmin = a.z();
+          lowest = start_of(sg);
+        }
+      }
     for (Index v = 0; v < m.num_vertices(); ++v) {
       if (bh[v] < o.footprint_height_mm || m.V(v, 0) * s <= 0) continue;
       if (m.V(v, 2) < zmin) {

@@ -170,11 +170,30 @@ std::vector<model::Blendshape> template_blendshapes(const TemplateMesh& tm, cons
                      return -18.0 * std::min(phi * phi, 1.5) * smoothstep(0.0, 6.0, bh[v]) *
                             (m.V(v, 0) * s > 0 ? 1.0 : 0.0) * fr.v;
                    },
-                   -0.6, 1.5);
-    explicit_shape("breast_lateral" + sfx, [&](Index v) -> Vec3 { return 15.0 * mound(v) * Vec3(s, 0, 0); },
-                   -0.6, 1.5);
-    explicit_shape("breast_cranial" + sfx, [&](Index v) -> Vec3 { return 12.0 * mound(v) * Vec3::UnitZ(); },
-                   -1.0, 1.5);
+                   -1.2, 2.5);
+    // Wide ranges: supine breasts slide laterally by up to ~50 mm, and a ptotic breast sits
+    // well below the template's.
+    // Shifts of the whole breast: in proportion to the tissue's height above the chest wall (a
+    // supine breast slides laterally by more where it is thicker), so the footprint's border
+    // stretches instead of shearing into a crease...
+    const double bh_top = std::max(1.0, bh.maxCoeff());
+    auto thickness = [&](Index v) { return std::min(1.0, bh[v] / (0.6 * bh_top)) * (m.V(v, 0) * s > 0 ? 1.0 : 0.0); };
+    explicit_shape("breast_lateral" + sfx, [&](Index v) -> Vec3 { return 15.0 * thickness(v) * Vec3(s, 0, 0); },
+                   -1.0, 3.0);
+    explicit_shape("breast_cranial" + sfx, [&](Index v) -> Vec3 { return 12.0 * thickness(v) * Vec3::UnitZ(); },
+                   -2.5, 2.0);
+    // ... and of the skin around it: a wide smooth field along the surface (the skin of the
+    // lateral chest wall follows a supine breast towards the axilla).
+    auto slide = [&](Index v, const Vec3& dir) -> Vec3 {
+      const Vec3 p = row(m.V, v);
+      const double g = std::exp(-(p - fr.base_center).squaredNorm() / (2.0 * 80.0 * 80.0));
+      const Vec3 n = row(N, v);
+      return g * smoothstep(0.0, 40.0, s * p.x()) * (dir - dir.dot(n) * n);
+    };
+    explicit_shape("breast_slide_lateral" + sfx, [&](Index v) -> Vec3 { return 12.0 * slide(v, Vec3(s, 0, 0)); },
+                   -1.5, 1.5);
+    explicit_shape("breast_slide_cranial" + sfx, [&](Index v) -> Vec3 { return 12.0 * slide(v, Vec3::UnitZ()); },
+                   -2.0, 1.5);
     iso("breast_upper_pole" + sfx, [side](BodyParams& p, double d) { p.breast[side].upper_fullness += 0.2 * d; },
         -1.0, 1.0);
     iso("breast_lower_pole" + sfx, [side](BodyParams& p, double d) { p.breast[side].lower_fullness += 0.2 * d; },
@@ -190,14 +209,14 @@ std::vector<model::Blendshape> template_blendshapes(const TemplateMesh& tm, cons
                      Vec3 t = lat_dir - lat_dir.dot(row(N, v)) * row(N, v);
                      return 8.0 * std::exp(-r2 / (2 * 24.0 * 24.0)) * mound(v) * t;
                    },
-                   -1.0, 1.0);
+                   -2.0, 2.0);
     explicit_shape("nipple_height" + sfx,
                    [&](Index v) -> Vec3 {
                      const double r2 = (row(m.V, v) - fr.nipple).squaredNorm();
                      Vec3 t = fr.v - fr.v.dot(row(N, v)) * row(N, v);
                      return 8.0 * std::exp(-r2 / (2 * 24.0 * 24.0)) * mound(v) * t;
                    },
-                   -1.0, 1.0);
+                   -2.0, 2.0);
   }
 
   // ---- global ----

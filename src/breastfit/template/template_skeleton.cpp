@@ -118,7 +118,9 @@ Eigen::MatrixXd skin_weight_seeds(const TemplateMesh& tm, const BodyField& field
     const double radial = ((p - J) - t * d).norm();
     const ArmParams& ap = field.params().arm[side];
     int bone;
-    if (t > 20.0 && radial < ap.radius_top + 12.0 && std::abs(p.x()) > 120.0) {
+    // The deltoid cap and the arm from just above the joint move with the humerus: with a
+    // later start the raised arm (supine, 65-95 deg) drags the shoulder and the pectoral fold.
+    if (t > -10.0 && radial < ap.radius_top + 12.0 && std::abs(p.x()) > 120.0) {
       bone = side == 0 ? kUpperArmR : kUpperArmL;
     } else if (std::abs(p.x()) > 75.0 && p.z() > J.z() - 25.0 && (p - J).norm() < 130.0) {
       bone = side == 0 ? kClavicleR : kClavicleL;
