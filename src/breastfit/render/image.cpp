@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <mutex>
 #include <string>
 
 #include <stb_image.h>
@@ -91,6 +92,11 @@ Image Image::downsampled(int factor) const {
 std::vector<std::uint8_t> Image::encode_png() const {
   if (empty()) throw InvalidInput("Image::encode_png: the image is empty");
   std::vector<std::uint8_t> out;
+  // stb tries all five PNG row filters on every row by default; the fixed "sub" filter encodes
+  // faster and, for these renders, a little smaller (1.72 vs 1.75 MB for an 1800 px scan view).
+  // The setting is a process-wide global: set it once.
+  static std::once_flag filter_once;
+  std::call_once(filter_once, [] { stbi_write_force_png_filter = 1; });
   const int ok = stbi_write_png_to_func(&append_bytes, &out, width_, height_, 3, data_.data(), width_ * 3);
   if (!ok) throw InvalidInput("Image::encode_png: the PNG encoder failed");
   return out;
