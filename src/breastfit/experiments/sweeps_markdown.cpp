@@ -7,27 +7,12 @@
 
 #include <nlohmann/json.hpp>
 
+#include "breastfit/experiments/markdown_cells.h"
+
 namespace breastfit::experiments {
 namespace {
 
 using nlohmann::json;
-
-const json& at(const json& j, const std::vector<const char*>& path) {
-  static const json null;
-  const json* p = &j;
-  for (const char* k : path) {
-    if (!p->is_object() || !p->contains(k)) return null;
-    p = &(*p)[k];
-  }
-  return *p;
-}
-
-std::string cell(const json& v, int digits = 2) {
-  if (!v.is_number()) return "–";
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.*f", digits, v.get<double>());
-  return buf;
-}
 
 /// Per pose: surface and landmark MAE against the truth and the paper's way, time, flagged runs.
 const char* kPoseHeader = " St surf true | St surf scan | St lmk true | St lmk scan | St time s | St flagged |"
@@ -36,12 +21,12 @@ const char* kPoseHeader = " St surf true | St surf scan | St lmk true | St lmk s
 std::string pose_cells(const json& e) {
   std::ostringstream s;
   for (const char* pose : {"standing", "supine"}) {
-    const json& g = at(e, {pose});
-    s << " " << cell(at(g, {"truth", "surface", "mae"})) << " | " << cell(at(g, {"paper", "surface", "mae"})) << " | "
-      << cell(at(g, {"truth", "landmarks", "mae"})) << " | " << cell(at(g, {"paper", "landmarks", "mae"})) << " | "
-      << cell(at(g, {"time_s"}), 3) << " | ";
-    const int flagged = at(g, {"n_not_converged"}).is_number() ? at(g, {"n_not_converged"}).get<int>() : 0;
-    const int errors = at(g, {"n_error"}).is_number() ? at(g, {"n_error"}).get<int>() : 0;
+    const json& g = json_at(e, {pose});
+    s << " " << cell(json_at(g, {"truth", "surface", "mae"})) << " | " << cell(json_at(g, {"paper", "surface", "mae"})) << " | "
+      << cell(json_at(g, {"truth", "landmarks", "mae"})) << " | " << cell(json_at(g, {"paper", "landmarks", "mae"})) << " | "
+      << cell(json_at(g, {"time_s"}), 3) << " | ";
+    const int flagged = json_at(g, {"n_not_converged"}).is_number() ? json_at(g, {"n_not_converged"}).get<int>() : 0;
+    const int errors = json_at(g, {"n_error"}).is_number() ? json_at(g, {"n_error"}).get<int>() : 0;
     if (g.is_null())
       s << "–";
     else
@@ -70,9 +55,9 @@ std::string sweeps_markdown(const json& j) {
         "landmarks → the landmarks placed on the scan). *time* = mean registration time. *flagged* = fits "
         "reported as not converged or failed (still averaged in when they produced numbers).\n";
   if (j.contains("landmarks")) {
-    const json& order = at(j, {"landmarks", "order"});
+    const json& order = json_at(j, {"landmarks", "order"});
     os << "\n## Fig. 4: number of landmarks used (paper's order)\n\n";
-    table(os, " n | landmark added |", at(j, {"landmarks", "summary"}), [&](const json& e) {
+    table(os, " n | landmark added |", json_at(j, {"landmarks", "summary"}), [&](const json& e) {
       const int n = e.value("count", 0);
       std::ostringstream c;
       c << " " << n << " | ";
@@ -85,9 +70,9 @@ std::string sweeps_markdown(const json& j) {
     });
   }
   if (j.contains("blendshapes")) {
-    os << "\n## Figs 5–6: number of blendshapes free (the first n of " << at(j, {"blendshapes", "total"}).dump()
+    os << "\n## Figs 5–6: number of blendshapes free (the first n of " << json_at(j, {"blendshapes", "total"}).dump()
        << ")\n\n";
-    table(os, " n |", at(j, {"blendshapes", "summary"}),
+    table(os, " n |", json_at(j, {"blendshapes", "summary"}),
           [](const json& e) {
             std::ostringstream c;
             c << " " << e.value("count", 0) << " |";
@@ -96,10 +81,10 @@ std::string sweeps_markdown(const json& j) {
   }
   if (j.contains("lambdas")) {
     os << "\n## Figs 7–8: one λ × factor (defaults:";
-    for (const auto& l : at(j, {"lambdas", "lambdas"}))
+    for (const auto& l : json_at(j, {"lambdas", "lambdas"}))
       os << " " << l.value("symbol", "?") << " = " << cell(l["default"], 3);
     os << ")\n\n";
-    table(os, " λ | factor | value |", at(j, {"lambdas", "summary"}), [](const json& e) {
+    table(os, " λ | factor | value |", json_at(j, {"lambdas", "summary"}), [](const json& e) {
       std::ostringstream c;
       c << " " << e.value("symbol", std::string("?")) << " | " << cell(e["factor"], 3) << " | " << cell(e["value"], 4)
         << " |";
@@ -108,8 +93,8 @@ std::string sweeps_markdown(const json& j) {
   }
   if (j.contains("resolution")) {
     os << "\n## Template resolution\n\n";
-    const json& levels = at(j, {"resolution", "levels"});
-    table(os, " edge mm | vertices | build s |", at(j, {"resolution", "summary"}), [&](const json& e) {
+    const json& levels = json_at(j, {"resolution", "levels"});
+    table(os, " edge mm | vertices | build s |", json_at(j, {"resolution", "summary"}), [&](const json& e) {
       json build = nullptr;
       for (const auto& l : levels)
         if (l["edge_mm"] == e["edge_mm"]) build = l.value("from_cache", false) ? json(nullptr) : l["build_s"];

@@ -9,28 +9,12 @@
 
 #include <nlohmann/json.hpp>
 
+#include "breastfit/experiments/markdown_cells.h"
+
 namespace breastfit::experiments {
 namespace {
 
 using nlohmann::json;
-
-/// j at the path, or null.
-const json& at(const json& j, const std::vector<const char*>& path) {
-  static const json null;
-  const json* p = &j;
-  for (const char* k : path) {
-    if (!p->is_object() || !p->contains(k)) return null;
-    p = &(*p)[k];
-  }
-  return *p;
-}
-
-std::string cell(const json& v, int digits = 2) {
-  if (!v.is_number()) return "–";
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.*f", digits, v.get<double>());
-  return buf;
-}
 
 std::string num(double v, int digits = 2) { return cell(json(v), digits); }
 
@@ -82,7 +66,7 @@ void our_table(std::ostringstream& os, const json& runs, const std::string& pose
     if (r.value("pose", "") != pose) continue;
     os << "| " << r.value("case", "?");
     for (size_t k = 0; k < cols.size(); ++k) {
-      const json& v = at(r, cols[k]);
+      const json& v = json_at(r, cols[k]);
       sums[k].push_back(v);
       os << " | " << cell(v);
     }
@@ -117,7 +101,7 @@ void referee_table(std::ostringstream& os, const json& referee_cases, const std:
     if (it == pose_of.end() || it->second != pose) continue;
     os << "| " << id;
     for (size_t k = 0; k < cols.size(); ++k) {
-      const json& v = at(r, cols[k]);
+      const json& v = json_at(r, cols[k]);
       sums[k].push_back(v);
       os << " | " << cell(v);
     }
@@ -164,7 +148,7 @@ void combined_table(std::ostringstream& os, const json& runs, const json& refere
       if (q.value("case", "") == r.value("case", "")) ref = &q;
     os << "| " << r.value("case", "?");
     for (size_t k = 0; k < cols.size(); ++k) {
-      const json& v = at(cols[k].first ? *ref : r, cols[k].second);
+      const json& v = json_at(cols[k].first ? *ref : r, cols[k].second);
       sums[k].push_back(v);
       os << " | " << cell(v);
     }
@@ -195,8 +179,8 @@ void agreement(std::ostringstream& os, const json& runs, const json& referee_cas
     for (const auto& r : runs)
       for (const auto& q : referee_cases)
         if (q.value("case", "") == r.value("case", "")) {
-          const json& a = at(r, paths.first);
-          const json& b = at(q, paths.second);
+          const json& a = json_at(r, paths.first);
+          const json& b = json_at(q, paths.second);
           if (!a.is_number() || !b.is_number()) continue;
           const double d = std::abs(a.get<double>() - b.get<double>());
           sum_ours += a.get<double>();
@@ -220,7 +204,7 @@ PaperTable1Mean paper_table1_mean(const std::string& pose) {
 
 std::string table1_markdown(const json& j) {
   std::ostringstream os;
-  const json& runs = at(j, {"table1", "runs"});
+  const json& runs = json_at(j, {"table1", "runs"});
   std::map<std::string, std::string> pose_of;
   if (runs.is_array())
     for (const auto& r : runs) pose_of[r.value("case", "")] = r.value("pose", "unknown");
@@ -231,7 +215,7 @@ std::string table1_markdown(const json& j) {
         "against the ground truth (fitted vertices → true surface over its observed part; model landmarks → true "
         "landmarks); drawings = mean symmetric distance of each transferred drawing to the true one "
         "(breastfit's own metrics). Time = scan and landmarks in memory → fitted parameters.\n";
-  const json& ref = at(j, {"referee", "cases"});
+  const json& ref = json_at(j, {"referee", "cases"});
   if (ref.is_array() && runs.is_array()) {
     os << "\n## As in the paper, with the truth scored by the external referee\n\n*Surf*, *Lmk* (the paper's way) "
           "from breastfit; *True*, contours and sternum from the referee on the same fits.\n";
@@ -246,7 +230,7 @@ std::string table1_markdown(const json& j) {
     if (runs.is_array()) our_table(os, runs, t[0]);
   }
   if (ref.is_array()) {
-    const json& cmd = at(j, {"referee", "command"});
+    const json& cmd = json_at(j, {"referee", "command"});
     os << "\n# Table 1 scored by the external referee\n\n`" << (cmd.is_string() ? cmd.get<std::string>() : "?")
        << "`\n\nScan = the paper's surface error; True = against the truth over the observed region; Rev = "
           "observed truth → fitted surface; Lmk = model landmarks → true landmarks; curves = mean symmetric "
