@@ -3,7 +3,7 @@
 namespace breastfit::fit {
 
 double landmark_weight(const std::string& name) {
-  if (name.rfind("midaxillary", 0) == 0) return 0.5;
+  if (name.rfind("midaxillary", 0) == 0) return 0.1;
   return 1.0;
 }
 
