@@ -34,7 +34,7 @@ struct EnergyWeights {
 /// Which correspondences are kept (docs/DESIGN.md §3).
 struct CorrespondenceOptions {
   double max_distance_start_mm = 40.0;  ///< distance threshold at the first iteration of a stage
-  double max_distance_end_mm = 10.0;    ///< threshold reached at the end (geometric decay)
+  double max_distance_end_mm = 15.0;    ///< threshold reached at the end (geometric decay); 10 → 15 mm: bench true-surface 2.56 → 2.48 mm at no cost (the robust kernel already down-weights far pairs)
   double max_normal_angle_deg = 60.0;   ///< reject pairs whose normals disagree more than this
   bool reject_boundary = true;          ///< reject pairs whose closest scan feature is on an open border
   double point_to_point_weight = 0.0;   ///< μ: share of point-to-point in the data term (0 = pure point-to-plane, the paper)
