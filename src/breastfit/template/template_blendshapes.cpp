@@ -250,6 +250,21 @@ std::vector<model::Blendshape> template_blendshapes(const TemplateMesh& tm, cons
                    return 12.0 * (weight_of(W, v, c) + weight_of(W, v, a)) * Vec3(s, 0, 0);
                  },
                  -1.0, 1.0);
+  // A belly that protrudes around the umbilicus (abdomen_protrusion moves the whole front of
+  // the abdomen, which cannot make a rounded, pointed belly).
+  explicit_shape("belly",
+                 [&](Index v) -> Vec3 {
+                   const Vec3 p = row(m.V, v);
+                   const Vec3 n = row(N, v);
+                   double hw, fy, by, ex;
+                   field.trunk_profile(p.z(), &hw, &fy, &by, &ex);
+                   const double front = smoothstep(0.5 * (fy + by), fy + 10.0, p.y());  // anterior half, smoothly
+                   const double g = std::exp(-p.x() * p.x() / (2 * 85.0 * 85.0)) *
+                                    std::exp(-(p.z() + 330.0) * (p.z() + 330.0) / (2 * 70.0 * 70.0));
+                   const double below_folds = smoothstep(-235.0, -285.0, p.z());  // not into the breasts' creases
+                   return 15.0 * g * front * below_folds * n;
+                 },
+                 -1.0, 2.0);
   explicit_shape("torso_length",
                  [&](Index v) -> Vec3 {
                    const double arms = weight_of(W, v, kUpperArmR) + weight_of(W, v, kUpperArmL);
