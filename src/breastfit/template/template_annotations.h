@@ -15,7 +15,7 @@ namespace breastfit::templ {
 struct AnnotationOptions {
   double drawing_spacing_mm = 5.0;   ///< spacing of drawing points along their curves
   double footprint_height_mm = 1.5;  ///< breast mound (lowest-point search, breast regions) = where the breast lifts the skin by more than this
-  double footprint_margin_mm = 6.0;  ///< breast contour = where the skin lies within this of the breast's ellipsoid (the gland)
+  double footprint_margin_mm = 4.0;  ///< breast contour = where the skin lies within this of the breast's ellipsoid (the gland)
   double contour_smoothing_mm = 8.0; ///< Gaussian smoothing of the breast contours along their length
   double xiphoid_z = -200.0;         ///< height of the xiphoid tip below the notch (z), mm
 };
