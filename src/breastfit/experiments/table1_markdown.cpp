@@ -30,6 +30,23 @@ json mean(const std::vector<json>& values) {
   return n ? json(s / n) : json(nullptr);
 }
 
+/// Appends " | value" for each column path of `record`, collecting the values per column.
+void append_cells(std::ostringstream& os, const json& record, const std::vector<std::vector<const char*>>& cols,
+                  std::vector<std::vector<json>>& sums) {
+  for (size_t k = 0; k < cols.size(); ++k) {
+    const json& v = json_at(record, cols[k]);
+    sums[k].push_back(v);
+    os << " | " << cell(v);
+  }
+}
+
+/// The bold mean row of the collected columns (its status cell empty).
+void append_mean_row(std::ostringstream& os, const std::vector<std::vector<json>>& sums) {
+  os << "| **mean**";
+  for (const auto& col : sums) os << " | **" << cell(mean(col)) << "**";
+  os << " | |\n";
+}
+
 const char* kPaperHeader =
     "| Case | Time s | Surf MAE | SD | Max | Lmk MAE | SD | Max | Min | True surf MAE | SD | Max | True lmk MAE | SD | "
     "Max | Min | Contour R | Contour L | Sternum | IMF R | IMF L | Status |\n"
@@ -65,16 +82,10 @@ void our_table(std::ostringstream& os, const json& runs, const std::string& pose
   for (const auto& r : runs) {
     if (r.value("pose", "") != pose) continue;
     os << "| " << r.value("case", "?");
-    for (size_t k = 0; k < cols.size(); ++k) {
-      const json& v = json_at(r, cols[k]);
-      sums[k].push_back(v);
-      os << " | " << cell(v);
-    }
+    append_cells(os, r, cols, sums);
     os << " | " << r.value("status", "?") << " |\n";
   }
-  os << "| **mean**";
-  for (auto& s : sums) os << " | **" << cell(mean(s)) << "**";
-  os << " | |\n";
+  append_mean_row(os, sums);
   const PaperTable1Mean p = paper_table1_mean(pose);
   os << "| *paper, mean* | " << num(p.time_s) << " | " << num(p.surface_mae) << " | " << num(p.surface_sd) << " | "
      << num(p.surface_max, 1) << " | " << num(p.landmark_mae) << " | " << num(p.landmark_sd) << " | "
@@ -100,16 +111,10 @@ void referee_table(std::ostringstream& os, const json& referee_cases, const std:
     const auto it = pose_of.find(id);
     if (it == pose_of.end() || it->second != pose) continue;
     os << "| " << id;
-    for (size_t k = 0; k < cols.size(); ++k) {
-      const json& v = json_at(r, cols[k]);
-      sums[k].push_back(v);
-      os << " | " << cell(v);
-    }
+    append_cells(os, r, cols, sums);
     os << " | " << r.value("status", "?") << " |\n";
   }
-  os << "| **mean**";
-  for (auto& s : sums) os << " | **" << cell(mean(s)) << "**";
-  os << " | |\n";
+  append_mean_row(os, sums);
 }
 
 /// The paper's Table 1 with the truth columns of the referee: model → scan and model landmarks →
