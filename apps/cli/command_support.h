@@ -23,6 +23,7 @@ struct FitFlags {
   std::optional<double> lambda_data, lambda_reverse, lambda_landmarks, lambda_scale, lambda_blendshapes,
       lambda_joints, lambda_continuity;
   std::optional<int> max_blendshapes, max_landmarks;
+  bool no_surface_detail = false;
 };
 
 void add_fit_flags(CLI::App& sub, FitFlags& flags);

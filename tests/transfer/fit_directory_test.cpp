@@ -2,11 +2,13 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
 
 #include <nlohmann/json.hpp>
 
 #include "breastfit/core/errors.h"
+#include "breastfit/fit/surface_detail.h"
 #include "breastfit/io/io.h"
 #include "breastfit/model/params_json.h"
 #include "breastfit/model/pose_evaluator.h"
@@ -54,6 +56,34 @@ TEST(FitDirectory, ReadsParamsOrFittedPlyInTheReportUnits) {
   std::ofstream(dir / "report.json") << R"({"units": "inches"})";
   EXPECT_THROW(read_fit_directory(dir, &m), IoError);
   EXPECT_THROW(read_fit_directory(dir / "nope", &m), IoError);
+}
+
+TEST(FitDirectory, AppliesTheSurfaceDetailOfParamsJson) {
+  const model::RiggedModel m = test::make_toy_model();
+  const fs::path dir = test::temp_dir() / "fit_detail";
+  fs::create_directories(dir);
+  const model::PoseParams p = test::random_toy_pose(m, 4, 0.5);
+  const Points posed = model::pose_vertices(m, p);
+  Eigen::VectorXd offsets(posed.rows());
+  for (Index i = 0; i < posed.rows(); ++i) offsets[i] = 2.0 * std::sin(0.1 * static_cast<double>(i));
+  nlohmann::json doc = model::params_to_json(m, p);
+  doc["surface_detail"] = {{"offsets_mm", std::vector<double>(offsets.data(), offsets.data() + offsets.size())}};
+  std::ofstream(dir / "params.json") << doc.dump();
+  TriangleMesh fitted;
+  fitted.V = fit::apply_surface_detail(posed, m.rest.F, offsets);
+  fitted.F = m.rest.F;
+  io::write_mesh(dir / "fitted.ply", fitted);
+
+  const FitDirectory read = read_fit_directory(dir, &m);
+  EXPECT_LT((read.fitted_mm.V - fitted.V).cwiseAbs().maxCoeff(), 1e-9);
+  EXPECT_GT((read.fitted_mm.V - posed).cwiseAbs().maxCoeff(), 1.0);  // the offsets were applied
+
+  doc["surface_detail"]["offsets_mm"] = std::vector<double>(3, 0.0);  // another template's count
+  std::ofstream(dir / "params.json") << doc.dump();
+  EXPECT_THROW(read_fit_directory(dir, &m), IoError);
+  doc["surface_detail"] = {{"offsets_mm", "none"}};
+  std::ofstream(dir / "params.json") << doc.dump();
+  EXPECT_THROW(read_fit_directory(dir, &m), IoError);
 }
 
 }  // namespace

@@ -111,6 +111,14 @@ void FitOptions::validate() const {
   validate_stage(pose);
   validate_stage(shape);
   validate_stage(refine);
+  const auto& d = detail;
+  require(d.passes >= 0 && d.passes <= 20, "detail.passes", d.passes, "must be in [0, 20]");
+  require(d.smoothness >= 0 && std::isfinite(d.smoothness), "detail.smoothness", d.smoothness, "must be finite and >= 0");
+  require(positive(d.decay), "detail.decay", d.decay, "must be finite and > 0");
+  require(positive(d.max_distance_mm), "detail.max_distance_mm", d.max_distance_mm, "must be finite and > 0");
+  require(d.max_offset_mm >= 0 && std::isfinite(d.max_offset_mm), "detail.max_offset_mm", d.max_offset_mm,
+          "must be finite and >= 0");
+  require(positive(d.kernel_scale_mm), "detail.kernel_scale_mm", d.kernel_scale_mm, "must be finite and > 0");
   require(positive(function_tolerance), "function_tolerance", function_tolerance, "must be > 0");
   require(positive(step_tolerance), "step_tolerance", step_tolerance, "must be > 0");
   require(positive(initial_damping), "initial_damping", initial_damping, "must be > 0");
@@ -121,7 +129,7 @@ void FitOptions::validate() const {
 }
 
 void update_from_json(FitOptions& o, const nlohmann::json& j) {
-  check_keys(j, "", {"weights", "correspondences", "landmark_pose", "rigid", "pose", "shape", "refine", "function_tolerance", "step_tolerance",
+  check_keys(j, "", {"weights", "correspondences", "landmark_pose", "rigid", "pose", "shape", "refine", "detail", "function_tolerance", "step_tolerance",
                      "initial_damping", "hessian_interval", "max_blendshapes", "max_landmarks", "use_landmarks", "landmark_warning_mm",
                      "max_surface_mae_mm", "min_kept_fraction"});
   if (auto it = j.find("weights"); it != j.end()) {
@@ -159,6 +167,18 @@ void update_from_json(FitOptions& o, const nlohmann::json& j) {
   if (auto it = j.find("pose"); it != j.end()) read_stage(*it, "pose.", o.pose);
   if (auto it = j.find("shape"); it != j.end()) read_stage(*it, "shape.", o.shape);
   if (auto it = j.find("refine"); it != j.end()) read_stage(*it, "refine.", o.refine);
+  if (auto it = j.find("detail"); it != j.end()) {
+    const std::string p = "detail.";
+    check_keys(*it, p, {"enabled", "passes", "smoothness", "decay", "max_distance_mm", "max_offset_mm", "kernel_scale_mm"});
+    auto& d = o.detail;
+    read(*it, "enabled", p, d.enabled);
+    read(*it, "passes", p, d.passes);
+    read(*it, "smoothness", p, d.smoothness);
+    read(*it, "decay", p, d.decay);
+    read(*it, "max_distance_mm", p, d.max_distance_mm);
+    read(*it, "max_offset_mm", p, d.max_offset_mm);
+    read(*it, "kernel_scale_mm", p, d.kernel_scale_mm);
+  }
   read(j, "function_tolerance", "", o.function_tolerance);
   read(j, "step_tolerance", "", o.step_tolerance);
   read(j, "initial_damping", "", o.initial_damping);
@@ -190,6 +210,10 @@ nlohmann::json to_json(const FitOptions& o) {
       {"pose", stage_json(o.pose)},
       {"shape", stage_json(o.shape)},
       {"refine", stage_json(o.refine)},
+      {"detail",
+       {{"enabled", o.detail.enabled}, {"passes", o.detail.passes}, {"smoothness", o.detail.smoothness},
+        {"decay", o.detail.decay}, {"max_distance_mm", o.detail.max_distance_mm},
+        {"max_offset_mm", o.detail.max_offset_mm}, {"kernel_scale_mm", o.detail.kernel_scale_mm}}},
       {"function_tolerance", o.function_tolerance},
       {"step_tolerance", o.step_tolerance},
       {"initial_damping", o.initial_damping},

@@ -55,6 +55,17 @@ struct StageOptions {
   bool use_data = true;      ///< false: landmarks and priors only (no correspondences)
 };
 
+/// The surface-detail layer after the parametric fit (fit/surface_detail.h; beyond the paper).
+struct SurfaceDetailOptions {
+  bool enabled = true;
+  int passes = 2;                  ///< correspondence + solve passes
+  double smoothness = 0.1;         ///< μ: weight of each edge difference relative to one correspondence
+  double decay = 0.02;             ///< ε: pulls offsets without scan support to 0
+  double max_distance_mm = 15.0;   ///< correspondence threshold
+  double max_offset_mm = 10.0;     ///< |offset| clamp
+  double kernel_scale_mm = 3.0;    ///< σ of the Geman–McClure weight on the previous pass's residual
+};
+
 struct FitOptions {
   EnergyWeights weights;
   CorrespondenceOptions correspondences;
@@ -66,6 +77,7 @@ struct FitOptions {
   StageOptions pose{"pose", true, true, false, 10, 2};
   StageOptions shape{"shape", true, true, true, 10, 2};
   StageOptions refine{"refine", true, true, true, 3, 1};
+  SurfaceDetailOptions detail;
   double function_tolerance = 1e-4;  ///< stop a stage when the relative energy decrease is below this
   double step_tolerance = 1e-6;      ///< stop a stage when the step's max-norm is below this
   double initial_damping = 1e-3;     ///< LM damping μ relative to diag(JᵀJ)

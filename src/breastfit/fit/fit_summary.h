@@ -38,6 +38,13 @@ struct StageSummary {
   double initial_energy = 0, final_energy = 0;
 };
 
+/// The surface-detail layer (fit/surface_detail.h), when applied.
+struct DetailSummary {
+  bool applied = false;
+  int kept = 0;                          ///< scan correspondences in its last pass
+  double mean_abs_mm = 0, max_abs_mm = 0;  ///< offsets along the normals
+};
+
 struct FitSummary {
   Termination termination = Termination::MaxIterations;
   std::string message;                ///< one line: why it stopped
@@ -49,6 +56,7 @@ struct FitSummary {
   double kept_mae_mm = 0;             ///< mean |point-to-plane| over the final kept pairs
   std::string initialization;         ///< "landmarks" or "landmark-free"
   int landmarks_used = 0;
+  DetailSummary detail;
   std::vector<std::string> warnings;
   double seconds = 0;                 ///< registration time (index build included)
   bool usable() const { return termination != Termination::NotUsable && termination != Termination::NumericalFailure; }

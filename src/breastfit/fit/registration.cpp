@@ -115,6 +115,14 @@ FitResult register_template(const model::RiggedModel& model, ScanTarget& scan, s
   }
   result.params = params;
   result.vertices = problem.evaluator().vertices();
+  result.model_vertices = result.vertices;
+  if (options.detail.enabled && summary.usable()) {
+    const SurfaceDetail d =
+        fit_surface_detail(result.vertices, model.rest.F, scan, options.correspondences, options.detail);
+    result.vertices = d.vertices;
+    result.detail_offsets = d.offsets;
+    summary.detail = {true, d.kept, d.mean_abs_mm, d.max_abs_mm};
+  }
   result.landmarks = landmarks;
   summary.seconds = timer.seconds();
   return result;

@@ -17,6 +17,7 @@
 #include "breastfit/fit/fit_summary.h"
 #include "breastfit/fit/landmark_term.h"
 #include "breastfit/fit/scan_target.h"
+#include "breastfit/fit/surface_detail.h"
 #include "breastfit/model/pose_params.h"
 #include "breastfit/model/rigged_model.h"
 
@@ -24,7 +25,9 @@ namespace breastfit::fit {
 
 struct FitResult {
   model::PoseParams params;               ///< fitted parameters θ*
-  Points vertices;                        ///< posed template vertices, mm, scan frame
+  Points vertices;                        ///< posed template vertices (+ surface detail), mm, scan frame
+  Points model_vertices;                  ///< the posed template alone (the paper's model), mm, scan frame
+  Eigen::VectorXd detail_offsets;         ///< surface-detail offsets along model_vertices' normals (empty: none)
   std::vector<LandmarkTarget> landmarks;  ///< the input landmarks as used (after any L/R correction)
   FitSummary summary;
 };

@@ -71,6 +71,11 @@ void write_register_outputs(const fs::path& dir, const RegisterResult& r, const 
 
   nlohmann::json params = model::params_to_json(model, r.fit.params);
   params["units_note"] = "translations in mm in the scan frame (converted from the file's units)";
+  if (r.fit.detail_offsets.size() > 0)
+    params["surface_detail"] = {
+        {"note", "fitted.ply = the posed template + offsets_mm[i] * unit vertex normal i of the posed template"},
+        {"offsets_mm", std::vector<double>(r.fit.detail_offsets.data(),
+                                           r.fit.detail_offsets.data() + r.fit.detail_offsets.size())}};
   write_json(dir / "params.json", params);
   write_json(dir / "report.json", r.report());
   if (options.report_html) {

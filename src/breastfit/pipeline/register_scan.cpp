@@ -72,6 +72,10 @@ RegisterResult register_scan(const RegisterRequest& req, const fit::IterationCal
       out.warnings.push_back("drawing '" + c.name + "': only " + fmt(100 * c.supported_fraction) + " % of it is on the scan");
   out.breasts = transfer::measure_breasts(*req.model, out.fit.vertices);
   out.surface = metrics::distance_stats(metrics::surface_distances(out.fit.vertices, scan, !out.scan.was_point_cloud));
+  out.surface_model_only =
+      out.fit.detail_offsets.size() > 0
+          ? metrics::distance_stats(metrics::surface_distances(out.fit.model_vertices, scan, !out.scan.was_point_cloud))
+          : out.surface;
   out.landmarks = metrics::landmark_errors(*req.model, out.fit.vertices, out.fit.params, out.fit.landmarks);
   return out;
 }
@@ -90,6 +94,7 @@ nlohmann::json RegisterResult::report() const {
   j["termination"] = fit::to_string(s.termination);
   j["solver"] = fit::to_json(s);
   j["table1"] = {{"surface_mm", metrics::to_json(surface)},
+                 {"surface_model_only_mm", metrics::to_json(surface_model_only)},
                  {"landmarks_mm", metrics::to_json(landmarks.stats)},
                  {"landmark_errors_mm", per_landmark}};
   nlohmann::json curves = nlohmann::json::object();

@@ -38,6 +38,7 @@ struct RegisterResult {
   std::vector<transfer::TransferredCurve> drawings_on_scan;  ///< the same with support flags and statistics
   transfer::BreastMeasurements breasts; ///< volumes, distances, symmetry
   metrics::DistanceStats surface;       ///< paper's surface error (fitted vertices → scan)
+  metrics::DistanceStats surface_model_only;  ///< the same for the posed template without surface detail
   metrics::LandmarkErrors landmarks;    ///< model landmarks vs input landmarks
   std::vector<std::string> warnings;    ///< everything the user should know
   double time_s = 0;                    ///< scan + landmarks in memory → fitted parameters (index build included)

@@ -18,7 +18,8 @@ struct FitDirectory {
 };
 
 /// Reads a register output directory. Units come from report.json ("units"; "mm" when the
-/// report is absent). With a model, the surface is the model posed by params.json (exact) and
+/// report is absent). With a model, the surface is the model posed by params.json (exact), plus
+/// its "surface_detail" offsets along the posed normals when present (fit/surface_detail.h), and
 /// fitted.ply, when present, must agree with it (same vertex count, within 0.5 mm + float
 /// rounding) — this catches a fit made with another template. Without a model, or without
 /// params.json, it is fitted.ply converted to mm.

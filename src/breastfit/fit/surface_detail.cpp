@@ -1,0 +1,106 @@
+#include "breastfit/fit/surface_detail.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <vector>
+
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+
+#include "breastfit/core/errors.h"
+#include "breastfit/fit/correspondences.h"
+#include "breastfit/mesh/normals.h"
+
+namespace breastfit::fit {
+namespace {
+
+// Unique undirected edges (i < j) of the triangles, sorted.
+std::vector<std::array<Index, 2>> unique_edges(const Triangles& F) {
+  std::vector<std::array<Index, 2>> e;
+  e.reserve(3 * F.rows());
+  for (Index f = 0; f < F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const Index a = F(f, k), b = F(f, (k + 1) % 3);
+      e.push_back({std::min(a, b), std::max(a, b)});
+    }
+  std::sort(e.begin(), e.end());
+  e.erase(std::unique(e.begin(), e.end()), e.end());
+  return e;
+}
+
+// V + h · N, row by row.
+Points displaced(const Points& V, const Points& N, const Eigen::VectorXd& h) {
+  return (V.array() + N.array().colwise() * h.array()).matrix();
+}
+
+}  // namespace
+
+Points apply_surface_detail(const Points& V, const Triangles& F, const Eigen::VectorXd& offsets) {
+  if (offsets.size() != V.rows())
+    throw InvalidInput("surface detail has " + std::to_string(offsets.size()) + " offsets for " +
+                       std::to_string(V.rows()) + " vertices");
+  const Points N = mesh::vertex_normals(V, F);
+  return displaced(V, N, offsets);
+}
+
+SurfaceDetail fit_surface_detail(const Points& V, const Triangles& F, const ScanTarget& scan,
+                                 const CorrespondenceOptions& correspondences, const SurfaceDetailOptions& o) {
+  const Index n = V.rows();
+  SurfaceDetail out;
+  out.offsets = Eigen::VectorXd::Zero(n);
+  out.vertices = V;
+  if (!o.enabled || o.passes <= 0 || n == 0) return out;
+
+  const Points N = mesh::vertex_normals(V, F);
+  // μ · graph Laplacian + ε · I: fixed over the passes; the data weights change the diagonal only.
+  const auto edges = unique_edges(F);
+  std::vector<Eigen::Triplet<double>> trip;
+  trip.reserve(4 * edges.size() + n);
+  Eigen::VectorXd base_diag = Eigen::VectorXd::Constant(n, o.decay);
+  for (const auto& [a, b] : edges) {
+    trip.emplace_back(a, b, -o.smoothness);
+    trip.emplace_back(b, a, -o.smoothness);
+    base_diag[a] += o.smoothness;
+    base_diag[b] += o.smoothness;
+  }
+  for (Index i = 0; i < n; ++i) trip.emplace_back(i, i, 0.0);  // diagonal entries exist in the pattern
+  Eigen::SparseMatrix<double> A(n, n);
+  A.setFromTriplets(trip.begin(), trip.end());
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver;
+  solver.analyzePattern(A);
+
+  CorrespondenceOptions co = correspondences;
+  co.kernel = RobustKernel::None;  // weights are set below from the residual left by the last pass
+  std::vector<Index> hints(n, -1);
+  Eigen::VectorXd h = Eigen::VectorXd::Zero(n);
+  for (int pass = 0; pass < o.passes; ++pass) {
+    const Points Vd = displaced(V, N, h);
+    CorrespondenceStats st;
+    const auto pairs = find_correspondences(Vd, N, scan, co, o.max_distance_mm, 1, &st, &hints);
+    Eigen::VectorXd diag = base_diag;
+    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n);
+    for (const auto& c : pairs) {
+      const Vec3 ni = N.row(c.vertex).transpose();
+      const double cosang = ni.dot(c.normal);
+      if (cosang < 0.2) continue;
+      // Offset along n_i that puts the vertex on the scan's tangent plane at the match.
+      const double r = c.normal.dot(c.target - V.row(c.vertex).transpose()) / cosang;
+      const double w = pass == 0 ? 1.0 : robust_weight(RobustKernel::GemanMcClure, r - h[c.vertex], o.kernel_scale_mm);
+      diag[c.vertex] += w;
+      rhs[c.vertex] += w * r;
+    }
+    out.kept = st.kept;
+    for (Index i = 0; i < n; ++i) A.coeffRef(i, i) = diag[i];
+    solver.factorize(A);
+    if (solver.info() != Eigen::Success) break;  // cannot happen (A is SPD for ε > 0); keep the last offsets
+    h = solver.solve(rhs).cwiseMax(-o.max_offset_mm).cwiseMin(o.max_offset_mm);
+  }
+  out.offsets = h;
+  out.vertices = displaced(V, N, h);
+  out.mean_abs_mm = h.cwiseAbs().mean();
+  out.max_abs_mm = h.cwiseAbs().maxCoeff();
+  return out;
+}
+
+}  // namespace breastfit::fit
