@@ -124,6 +124,22 @@ std::vector<SurfacePoint> smooth_closed_curve(const TriangleMesh& m, const std::
   return out;
 }
 
+// Moves a surface point `distance` mm down the surface (along −z projected onto the tangent
+// plane), in 1 mm steps each re-projected onto the surface.
+Vec3 walk_down(const TriangleMesh& m, Vec3 p, double distance) {
+  const int steps = static_cast<int>(std::ceil(distance));
+  for (int k = 0; k < steps; ++k) {
+    const SurfacePoint sp = closest_surface_point(m, p);
+    const Vec3 a = m.V.row(m.F(sp.face, 0)).transpose(), b = m.V.row(m.F(sp.face, 1)).transpose(),
+               c = m.V.row(m.F(sp.face, 2)).transpose();
+    const Vec3 n = (b - a).cross(c - a).normalized();
+    Vec3 t = -Vec3::UnitZ() + n.z() * n;
+    if (t.norm() < 1e-6) break;  // a horizontal face: no downhill direction
+    p = closest_surface_point(m, sp.position(m.V, m.F) + (distance / steps) * t.normalized()).position(m.V, m.F);
+  }
+  return p;
+}
+
 }  // namespace
 
 TemplateAnnotations template_annotations(const TemplateMesh& tm, const BodyField& field,
@@ -180,6 +196,14 @@ TemplateAnnotations template_annotations(const TemplateMesh& tm, const BodyField
     loop = rotated_to_start_near(m, loop, top);
     std::vector<Vec3> fine;
     for (const auto& sp : resample_path(m, loop, 1.0)) fine.push_back(sp.position(m.V, m.F));
+    double zlo = fine.front().z(), zhi = zlo;
+    for (const Vec3& p : fine) zlo = std::min(zlo, p.z()), zhi = std::max(zhi, p.z());
+    const double zmid = 0.5 * (zlo + zhi);
+    for (Vec3& p : fine)
+      if (p.z() > zmid && zhi > zmid) {
+        const double u = (p.z() - zmid) / (zhi - zmid);
+        p = walk_down(m, p, o.contour_top_lowering_mm * u * u);
+      }
     auto pts = smooth_closed_curve(m, fine, o.contour_smoothing_mm, o.drawing_spacing_mm);
     // Start at the most superior point.
     size_t top_i = 0;
