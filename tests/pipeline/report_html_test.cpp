@@ -206,6 +206,11 @@ TEST(ReportHtml, ContainsTheNumbersOfTheResult) {
   EXPECT_TRUE(has("MAE <b>" + fixed(r.surface.mae, 2) + " mm</b>, SD " + fixed(r.surface.sd, 2) + " mm, max " +
                   fixed(r.surface.max, 1) + " mm"));
   EXPECT_TRUE(has(std::to_string(r.surface.n) + " of " + std::to_string(r.fitted_mm.V.rows())));
+  // The template alone (before the surface detail), the number to judge the drawings by.
+  ASSERT_TRUE(r.fit.summary.detail.applied);
+  EXPECT_TRUE(has("Template alone"));
+  EXPECT_TRUE(has("MAE <b>" + fixed(r.surface_model_only.mae, 2) + " mm</b>"));
+  EXPECT_TRUE(has("by " + fixed(r.fit.summary.detail.mean_abs_mm, 1) + " mm on average"));
   const auto& l = r.landmarks.stats;
   ASSERT_GT(l.n, 0);
   EXPECT_TRUE(has("MAE <b>" + fixed(l.mae, 2) + " mm</b>, SD " + fixed(l.sd, 2) + " mm, max " + fixed(l.max, 1) +

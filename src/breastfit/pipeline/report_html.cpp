@@ -138,6 +138,15 @@ void registration_table(std::string& h, const RegisterResult& r, const ReportFig
       "MAE <b>" + num(e.mae, 2) + " mm</b>, SD " + num(e.sd, 2) + " mm, max " + num(e.max, 1) + " mm <span class=\"note\">(" +
           std::to_string(e.n) + " of " + std::to_string(r.fitted_mm.V.rows()) +
           " fitted vertices compared; the others face holes or lie beyond the scanned area)</span>");
+  if (s.detail.applied) {
+    const auto& m = r.surface_model_only;
+    row(h, "Template alone",
+        "MAE <b>" + num(m.mae, 2) + " mm</b>, SD " + num(m.sd, 2) + " mm, max " + num(m.max, 1) +
+            " mm <span class=\"note\">(the posed template before the surface detail: how far its shape space "
+            "reaches this body; the detail then moved the surface along its normals by " +
+            num(s.detail.mean_abs_mm, 1) + " mm on average, at most " + num(s.detail.max_abs_mm, 1) +
+            " mm. The drawings follow the template, so this is the number to judge them by.)</span>");
+  }
   int compared = 0, within2 = 0, within5 = 0;
   for (Eigen::Index i = 0; i < figures.distances_mm.size(); ++i) {
     const double d = figures.distances_mm[i];
