@@ -336,6 +336,25 @@ TEST(ClosestPointIndex, OwnsACopyOfTheMeshAndMoves) {
   EXPECT_EQ(other.closest(q).face, before.face);
 }
 
+TEST(ClosestPointIndex, TakingOverTheMeshGivesTheSameIndex) {
+  const TriangleMesh m = meshes::noisy_sheet(30, 2.0, 1.0, 0.1, 21);
+  const ClosestPointIndex copied(m);
+  TriangleMesh tmp = m;
+  const ClosestPointIndex taken(std::move(tmp));
+  EXPECT_EQ(taken.mesh().V, m.V);
+  EXPECT_EQ(taken.mesh().F, m.F);
+  for (const Vec3& q : queries(m, 2000, 4.0, 1.5, 22)) {
+    const ClosestPoint a = copied.closest(q), b = taken.closest(q);
+    ASSERT_EQ(a.face, b.face);
+    ASSERT_EQ(a.sq_dist, b.sq_dist);
+    ASSERT_EQ(a.point, b.point);
+    ASSERT_EQ(a.bary, b.bary);
+    ASSERT_EQ(a.feature, b.feature);
+    ASSERT_EQ(a.on_boundary, b.on_boundary);
+    ASSERT_EQ(copied.smooth_normal(a), taken.smooth_normal(b));
+  }
+}
+
 TEST(ClosestPointIndex, ConcurrentQueriesAgree) {
   const TriangleMesh m = meshes::icosphere(4, 100.0);
   const ClosestPointIndex index(m);

@@ -1,6 +1,7 @@
 #include "breastfit/fit/correspondences.h"
 
 #include <cmath>
+#include <utility>
 
 #include "breastfit/mesh/normals.h"
 #include "breastfit/spatial/closest_point_index.h"
@@ -71,7 +72,7 @@ std::vector<ReverseCorrespondence> find_reverse_correspondences(const Points& V,
   TriangleMesh posed;
   posed.V = V;
   posed.F = F;
-  const spatial::ClosestPointIndex index(posed);
+  const spatial::ClosestPointIndex index(std::move(posed));
   const Points& S = scan.sample_points();
   const Points SN = scan.sample_normals();
   if (hints && static_cast<Index>(hints->size()) != S.rows()) hints->assign(S.rows(), -1);

@@ -9,17 +9,18 @@
 
 namespace breastfit::fit {
 
-ScanTarget::ScanTarget(const TriangleMesh& scan_mm, int num_samples) : mesh_(scan_mm) {
-  if (mesh_.num_faces() == 0) throw InvalidInput("the scan has no triangles");
-  index_ = std::make_unique<spatial::ClosestPointIndex>(mesh_);
+ScanTarget::ScanTarget(const TriangleMesh& scan_mm, int num_samples) {
+  if (scan_mm.num_faces() == 0) throw InvalidInput("the scan has no triangles");
+  index_ = std::make_unique<spatial::ClosestPointIndex>(scan_mm);
+  const TriangleMesh& mesh = index_->mesh();
   // Area-uniform deterministic samples.
-  const Index nf = mesh_.num_faces();
+  const Index nf = mesh.num_faces();
   std::vector<double> cumulative(nf, 0.0);
   double total = 0.0;
   for (Index f = 0; f < nf; ++f) {
-    const auto a = mesh_.F(f, 0), b = mesh_.F(f, 1), c = mesh_.F(f, 2);
-    const Vec3 e1 = mesh_.V.row(b) - mesh_.V.row(a);
-    const Vec3 e2 = mesh_.V.row(c) - mesh_.V.row(a);
+    const auto a = mesh.F(f, 0), b = mesh.F(f, 1), c = mesh.F(f, 2);
+    const Vec3 e1 = mesh.V.row(b) - mesh.V.row(a);
+    const Vec3 e2 = mesh.V.row(c) - mesh.V.row(a);
     total += 0.5 * e1.cross(e2).norm();
     cumulative[f] = total;
   }
@@ -33,9 +34,9 @@ ScanTarget::ScanTarget(const TriangleMesh& scan_mm, int num_samples) : mesh_(sca
       const Index ff = std::min<Index>(f, nf - 1);
       double r1 = rng.uniform(), r2 = rng.uniform();
       if (r1 + r2 > 1) { r1 = 1 - r1; r2 = 1 - r2; }
-      const Vec3 a = mesh_.V.row(mesh_.F(ff, 0));
-      const Vec3 b = mesh_.V.row(mesh_.F(ff, 1));
-      const Vec3 c = mesh_.V.row(mesh_.F(ff, 2));
+      const Vec3 a = mesh.V.row(mesh.F(ff, 0));
+      const Vec3 b = mesh.V.row(mesh.F(ff, 1));
+      const Vec3 c = mesh.V.row(mesh.F(ff, 2));
       samples_.row(s) = (a + r1 * (b - a) + r2 * (c - a)).transpose();
       sample_normals_.row(s) = index_->face_normal(ff).transpose();
     }
@@ -44,6 +45,8 @@ ScanTarget::ScanTarget(const TriangleMesh& scan_mm, int num_samples) : mesh_(sca
 
 ScanTarget::~ScanTarget() = default;
 ScanTarget::ScanTarget(ScanTarget&&) noexcept = default;
+
+const TriangleMesh& ScanTarget::mesh() const { return index_->mesh(); }
 
 Points ScanTarget::sample_normals() const { return normal_sign_ * sample_normals_; }
 

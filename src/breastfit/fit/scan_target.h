@@ -41,15 +41,15 @@ class ScanTarget {
   void set_normal_sign(double sign) { normal_sign_ = sign; }
   double normal_sign() const { return normal_sign_; }
 
-  const TriangleMesh& mesh() const { return mesh_; }
+  /// The scan as given (the index's copy: the target keeps no second one).
+  const TriangleMesh& mesh() const;
   /// Deterministic area-uniform samples (points and unit normals, oriented by normal_sign())
   /// of the scan, for the reverse term.
   const Points& sample_points() const { return samples_; }
   Points sample_normals() const;
 
  private:
-  TriangleMesh mesh_;
-  std::unique_ptr<spatial::ClosestPointIndex> index_;
+  std::unique_ptr<spatial::ClosestPointIndex> index_;  // owns the scan's copy
   Points samples_;
   Points sample_normals_;
   double normal_sign_ = 1.0;

@@ -100,62 +100,103 @@ struct ClosestPointIndex::Impl {
   TriangleMesh mesh;
   // Tree nodes; a leaf's `first` is the index of its block in `blocks` and `count` the
   // number of 64-byte lines of the block.
-  std::vector<detail::BvhNode, detail::CacheAlignedAllocator<detail::BvhNode>> nodes;
-  std::vector<CacheLine, detail::CacheAlignedAllocator<CacheLine>> blocks;
+  detail::BvhNodes nodes;
+  std::vector<CacheLine, detail::UninitCacheAlignedAllocator<CacheLine>> blocks;
   std::vector<std::uint8_t> face_flags;    // by face: detail::kFlag*
   std::vector<std::uint8_t> vertex_boundary;  // by vertex: 1 on an open-boundary edge
   Points vertex_normals;                   // #V by 3 area-weighted unit normals (or zero)
 
-  explicit Impl(const TriangleMesh& m) : mesh(m) {
+  /// Builds the tables and the tree (LBVH over the faces' box centres; the same tree as
+  /// detail::Bvh::build(detail::triangle_boxes(mesh)) with the Morton method, built without
+  /// materialising the boxes: codes come from the mesh, leaf boxes from the leaf blocks).
+  explicit Impl(const TriangleMesh& m) : mesh(m) { build(); }
+  explicit Impl(TriangleMesh&& m) : mesh(std::move(m)) { build(); }
+
+  void build() {
     detail::validate_triangle_mesh(mesh, "ClosestPointIndex");
     face_flags = detail::triangle_flags(mesh, &vertex_boundary);
     vertex_normals = detail::area_weighted_vertex_normals(mesh);
-    detail::BvhBuildOptions options;
-    options.max_leaf_size = kMaxLeafSize;
-    detail::Bvh bvh = detail::Bvh::build(detail::triangle_boxes(mesh), options);
-    nodes = std::move(bvh.nodes);
-    build_leaf_blocks(bvh.prims);
+    std::vector<std::uint32_t> prims;
+    {
+      detail::MortonSorted sorted = detail::triangle_morton_order(mesh);
+      detail::build_morton_topology(sorted.codes, kMaxLeafSize, nodes);
+      prims = std::move(sorted.prims);
+    }
+    build_leaf_blocks(prims);
+    detail::fit_inner_boxes(nodes);
   }
 
-  void build_leaf_blocks(const std::vector<std::int32_t>& prims) {
-    std::size_t num_lines = 0;
+  /// Replaces each leaf's slot range by its block (see LeafHeader) and sets its box: the
+  /// bounds of the leaf's vertices rounded outward to float (= the union of its triangles'
+  /// boxes).
+  void build_leaf_blocks(const std::vector<std::uint32_t>& prims) {
+    // Upper bound: every leaf full with 3 distinct corners per triangle. The buffer is not
+    // initialised, so this only claims address space; lines are written (and paged in) once,
+    // in order.
+    std::size_t max_lines = 0;
     for (const detail::BvhNode& n : nodes) {
-      if (n.is_leaf()) num_lines += (kHeaderBytes + 3 * n.count * 24 + 63) / 64;
+      if (n.is_leaf()) max_lines += (kHeaderBytes + 3 * n.count * 24 + 63) / 64;
     }
-    blocks.assign(num_lines, CacheLine{});
-    std::size_t line = 0;
-    for (detail::BvhNode& n : nodes) {
-      if (!n.is_leaf()) continue;
-      unsigned char* base = blocks[line].bytes;
+    blocks.resize(max_lines);  // uninitialised: pages are touched only where written
+    std::size_t used = 0;
+    const double* V = mesh.V.data();
+    const Index* F = mesh.F.data();
+    // Distinct corners of a leaf, in first-use order: seen[v] = (leaf number << 4) | slot of
+    // v in the current leaf's block (leaf numbers start at 1, so 0 is "not seen").
+    static_assert(3 * kMaxLeafSize <= 16, "corner slots must fit in 4 bits");
+    std::vector<std::uint32_t> seen(static_cast<std::size_t>(mesh.num_vertices()), 0);
+    std::uint32_t leaf_number = 0;
+    for (std::size_t i = 0; i < nodes.size(); ++i) {
+      detail::BvhNode& n = nodes[i];
+      if (i == 1 || !n.is_leaf()) continue;  // padding, inner node
+      if (++leaf_number >= (1u << 28)) {  // stamps would overflow: start over
+        std::fill(seen.begin(), seen.end(), 0u);
+        leaf_number = 1;
+      }
       LeafHeader h{};
       h.count = static_cast<std::uint8_t>(n.count);
       Index verts[3 * kMaxLeafSize];
       int nv = 0;
-      for (int i = 0; i < n.count; ++i) {
-        const std::int32_t f = prims[n.first + i];
-        h.face[i] = f;
-        h.flags[i] = face_flags[f];
+      for (int t = 0; t < n.count; ++t) {
+        const auto f = static_cast<std::int32_t>(prims[n.first + t]);
+        h.face[t] = f;
+        h.flags[t] = face_flags[f];
         for (int k = 0; k < 3; ++k) {
-          const Index v = mesh.F(f, k);
-          int j = 0;
-          while (j < nv && verts[j] != v) ++j;
-          if (j == nv) verts[nv++] = v;
-          h.corner[i][k] = static_cast<std::uint8_t>(j);
+          const Index v = F[3 * static_cast<std::ptrdiff_t>(f) + k];
+          std::uint32_t& s = seen[static_cast<std::size_t>(v)];
+          if ((s >> 4) != leaf_number) {
+            s = (leaf_number << 4) | static_cast<std::uint32_t>(nv);
+            verts[nv++] = v;
+          }
+          h.corner[t][k] = static_cast<std::uint8_t>(s & 15u);
         }
       }
       h.num_vertices = static_cast<std::uint8_t>(nv);
+      const std::size_t line = used;
+      const std::size_t lines = (kHeaderBytes + 24 * nv + 63) / 64;
+      used += lines;
+      unsigned char* base = blocks[line].bytes;
+      std::memset(blocks[line + lines - 1].bytes, 0, 64);  // deterministic padding
+      std::memset(base, 0, kHeaderBytes);
       std::memcpy(base, &h, sizeof(LeafHeader));
       auto* coords = reinterpret_cast<double*>(base + kHeaderBytes);
+      double lo[3] = {kInf, kInf, kInf}, hi[3] = {-kInf, -kInf, -kInf};
       for (int j = 0; j < nv; ++j) {
-        for (int k = 0; k < 3; ++k) coords[3 * j + k] = mesh.V(verts[j], k);
+        const double* p = V + 3 * static_cast<std::ptrdiff_t>(verts[j]);
+        for (int k = 0; k < 3; ++k) {
+          coords[3 * j + k] = p[k];
+          lo[k] = std::min(lo[k], p[k]);
+          hi[k] = std::max(hi[k], p[k]);
+        }
       }
-      const std::size_t lines = (kHeaderBytes + 24 * nv + 63) / 64;
+      for (int k = 0; k < 3; ++k) {
+        n.lo[k] = detail::round_down_to_float(lo[k]);
+        n.hi[k] = detail::round_up_to_float(hi[k]);
+      }
       n.first = static_cast<std::int32_t>(line);
       n.count = static_cast<std::int32_t>(lines);
-      line += lines;
     }
-    blocks.resize(line);
-    blocks.shrink_to_fit();
+    blocks.resize(used);  // shrinks in place
   }
 
   const double* vertex(Index face, int corner) const {
@@ -290,6 +331,8 @@ struct ClosestPointIndex::Impl {
 
 ClosestPointIndex::ClosestPointIndex(const TriangleMesh& mesh)
     : impl_(std::make_unique<Impl>(mesh)) {}
+ClosestPointIndex::ClosestPointIndex(TriangleMesh&& mesh)
+    : impl_(std::make_unique<Impl>(std::move(mesh))) {}
 ClosestPointIndex::~ClosestPointIndex() = default;
 ClosestPointIndex::ClosestPointIndex(ClosestPointIndex&&) noexcept = default;
 ClosestPointIndex& ClosestPointIndex::operator=(ClosestPointIndex&&) noexcept = default;

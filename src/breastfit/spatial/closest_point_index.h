@@ -27,6 +27,9 @@ class ClosestPointIndex {
  public:
   /// \throws InvalidInput when the mesh has no triangles or non-finite vertices.
   explicit ClosestPointIndex(const TriangleMesh& mesh);
+  /// Same index, taking over `mesh` instead of copying it (for callers that build a mesh only
+  /// to index it). Addition, backwards compatible.
+  explicit ClosestPointIndex(TriangleMesh&& mesh);
   ~ClosestPointIndex();
   ClosestPointIndex(ClosestPointIndex&&) noexcept;
   ClosestPointIndex& operator=(ClosestPointIndex&&) noexcept;

@@ -7,6 +7,8 @@
 #include <limits>
 #include <utility>
 
+#include "breastfit/spatial/detail/radix_sort.h"
+
 namespace breastfit::spatial::detail {
 namespace {
 
@@ -34,16 +36,8 @@ struct Aabb {
   }
 };
 
-float round_down(double x) {
-  const auto f = static_cast<float>(x);
-  return static_cast<double>(f) > x ? std::nextafter(f, -std::numeric_limits<float>::infinity())
-                                    : f;
-}
-float round_up(double x) {
-  const auto f = static_cast<float>(x);
-  return static_cast<double>(f) < x ? std::nextafter(f, std::numeric_limits<float>::infinity())
-                                    : f;
-}
+float round_down(double x) { return round_down_to_float(x); }
+float round_up(double x) { return round_up_to_float(x); }
 
 struct Task {
   std::int32_t node;
@@ -60,9 +54,8 @@ struct Bin {
   std::int32_t count = 0;
 };
 
-/// LBVH: sort by the Morton code of the box centres, split each range where the highest
-/// differing bit flips (equal codes: halve), then fit the boxes bottom-up. The depth is at most
-/// 63 bit levels plus log2(n) halvings.
+/// LBVH over primitive boxes: sort by the Morton code of the box centres, build the topology
+/// (build_morton_topology), then fit the boxes bottom-up.
 Bvh build_morton(const std::vector<PrimBox>& boxes, int max_leaf) {
   Bvh bvh;
   const auto n = static_cast<std::int32_t>(boxes.size());
@@ -72,27 +65,47 @@ Bvh build_morton(const std::vector<PrimBox>& boxes, int max_leaf) {
                          0.5 * (b.lo[2] + b.hi[2])};
     cbox.grow_point(c);
   }
-  double scale[3];
-  for (int k = 0; k < 3; ++k) {
-    const double ext = cbox.hi[k] - cbox.lo[k];
-    scale[k] = ext > 0.0 ? static_cast<double>((1u << 21) - 1) / ext : 0.0;
-  }
-  std::vector<std::pair<std::uint64_t, std::int32_t>> keys(n);
+  const MortonGrid grid = MortonGrid::over(cbox.lo, cbox.hi);
+  std::vector<std::uint64_t> codes(n);
+  std::vector<std::uint32_t> order(n);
   for (std::int32_t i = 0; i < n; ++i) {
-    std::uint64_t code = 0;
-    for (int k = 0; k < 3; ++k) {
-      const double c = 0.5 * (boxes[i].lo[k] + boxes[i].hi[k]);
-      const auto cell = static_cast<std::uint64_t>((c - cbox.lo[k]) * scale[k]);
-      code |= spread_bits_21(cell) << (2 - k);
-    }
-    keys[i] = {code, i};
+    const double c[3] = {0.5 * (boxes[i].lo[0] + boxes[i].hi[0]),
+                         0.5 * (boxes[i].lo[1] + boxes[i].hi[1]),
+                         0.5 * (boxes[i].lo[2] + boxes[i].hi[2])};
+    codes[i] = grid.code(c);
+    order[i] = static_cast<std::uint32_t>(i);
   }
-  std::sort(keys.begin(), keys.end());
-  bvh.prims.resize(n);
-  for (std::int32_t i = 0; i < n; ++i) bvh.prims[i] = keys[i].second;
+  radix_sort_pairs(codes, order, 63);
+  bvh.prims.assign(order.begin(), order.end());
+  bvh.max_depth = build_morton_topology(codes, max_leaf, bvh.nodes);
+  for (std::size_t i = 0; i < bvh.nodes.size(); ++i) {
+    BvhNode& node = bvh.nodes[i];
+    if (i == 1 || !node.is_leaf()) continue;  // padding, inner node
+    Aabb box;
+    for (std::int32_t s = node.first; s < node.first + node.count; ++s) {
+      box.grow(boxes[bvh.prims[s]].lo, boxes[bvh.prims[s]].hi);
+    }
+    for (int k = 0; k < 3; ++k) {
+      node.lo[k] = round_down(box.lo[k]);
+      node.hi[k] = round_up(box.hi[k]);
+    }
+  }
+  fit_inner_boxes(bvh.nodes);
+  return bvh;
+}
 
-  bvh.nodes.reserve(2 * static_cast<std::size_t>(n) + 2);
-  bvh.nodes.resize(2);
+}  // namespace
+
+int build_morton_topology(const std::vector<std::uint64_t>& keys, int max_leaf,
+                          BvhNodes& nodes) {
+  const auto n = static_cast<std::int32_t>(keys.size());
+  max_leaf = std::max(1, max_leaf);
+  int max_depth = 0;
+  nodes.clear();
+  if (n == 0) return 0;
+  // Upper bound on the node count (reserving does not touch the memory).
+  nodes.reserve(2 * static_cast<std::size_t>(n) + 2);
+  nodes.resize(2);
   struct Range {
     std::int32_t node, begin, end;
     int depth;
@@ -102,64 +115,53 @@ Bvh build_morton(const std::vector<PrimBox>& boxes, int max_leaf) {
   while (!stack.empty()) {
     const Range r = stack.back();
     stack.pop_back();
-    bvh.max_depth = std::max(bvh.max_depth, r.depth);
+    max_depth = std::max(max_depth, r.depth);
     if (r.end - r.begin <= max_leaf) {
-      bvh.nodes[r.node].first = r.begin;
-      bvh.nodes[r.node].count = r.end - r.begin;
+      nodes[r.node].first = r.begin;
+      nodes[r.node].count = r.end - r.begin;
       continue;
     }
-    const std::uint64_t first = keys[r.begin].first, last = keys[r.end - 1].first;
+    const std::uint64_t first = keys[r.begin], last = keys[r.end - 1];
     std::int32_t mid;
     if (first == last) {
       mid = r.begin + (r.end - r.begin) / 2;
     } else {
       const int bit = 63 - __builtin_clzll(first ^ last);
       const std::uint64_t mask = std::uint64_t{1} << bit;
-      // First key in the range with the bit set (keys sorted, prefix above `bit` shared).
-      std::int32_t lo = r.begin, hi = r.end - 1;
-      while (lo < hi) {
-        const std::int32_t m = lo + (hi - lo) / 2;
-        if (keys[m].first & mask) {
-          hi = m;
-        } else {
-          lo = m + 1;
-        }
+      // First key in the range with the bit set (keys sorted, prefix above `bit` shared, the
+      // last key has it). Branch-free binary search: the answer stays in [b, b + len).
+      const std::uint64_t* b = keys.data() + r.begin;
+      std::size_t len = static_cast<std::size_t>(r.end - r.begin);
+      while (len > 1) {
+        const std::size_t half = len / 2;
+        b += (b[half - 1] & mask) ? 0 : half;
+        len -= half;
       }
-      mid = lo;
+      mid = static_cast<std::int32_t>(b - keys.data());
     }
-    const auto left = static_cast<std::int32_t>(bvh.nodes.size());
-    bvh.nodes.resize(bvh.nodes.size() + 2);
-    bvh.nodes[r.node].first = left;
-    bvh.nodes[r.node].count = 0;
+    const auto left = static_cast<std::int32_t>(nodes.size());
+    nodes.resize(nodes.size() + 2);
+    nodes[r.node].first = left;
+    nodes[r.node].count = 0;
     stack.push_back({left + 1, mid, r.end, r.depth + 1});
     stack.push_back({left, r.begin, mid, r.depth + 1});
   }
-  // Children always follow their parent: fit boxes from the back.
-  for (std::size_t i = bvh.nodes.size(); i-- > 0;) {
-    if (i == 1) continue;  // padding
-    BvhNode& node = bvh.nodes[i];
-    if (node.is_leaf()) {
-      Aabb box;
-      for (std::int32_t s = node.first; s < node.first + node.count; ++s) {
-        box.grow(boxes[bvh.prims[s]].lo, boxes[bvh.prims[s]].hi);
-      }
-      for (int k = 0; k < 3; ++k) {
-        node.lo[k] = round_down(box.lo[k]);
-        node.hi[k] = round_up(box.hi[k]);
-      }
-    } else {
-      const BvhNode& a = bvh.nodes[node.first];
-      const BvhNode& b = bvh.nodes[node.first + 1];
-      for (int k = 0; k < 3; ++k) {
-        node.lo[k] = std::min(a.lo[k], b.lo[k]);
-        node.hi[k] = std::max(a.hi[k], b.hi[k]);
-      }
-    }
-  }
-  return bvh;
+  return max_depth;
 }
 
-}  // namespace
+void fit_inner_boxes(BvhNodes& nodes) {
+  for (std::size_t i = nodes.size(); i-- > 0;) {
+    if (i == 1) continue;  // padding
+    BvhNode& node = nodes[i];
+    if (node.is_leaf()) continue;
+    const BvhNode& a = nodes[node.first];
+    const BvhNode& b = nodes[node.first + 1];
+    for (int k = 0; k < 3; ++k) {
+      node.lo[k] = std::min(a.lo[k], b.lo[k]);
+      node.hi[k] = std::max(a.hi[k], b.hi[k]);
+    }
+  }
+}
 
 Bvh Bvh::build(const std::vector<PrimBox>& boxes, const BvhBuildOptions& options) {
   Bvh bvh;

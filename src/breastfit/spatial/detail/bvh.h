@@ -3,8 +3,10 @@
 /// RayCaster (private to the spatial layer). Binary tree built by Morton codes (LBVH) or binned
 /// SAH, float boxes rounded outward (conservative), children of a node stored as an adjacent
 /// pair at an even index so that a pair fills one 64-byte cache line.
+#include <bit>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <new>
 #include <vector>
 
@@ -36,6 +38,32 @@ struct CacheAlignedAllocator {
   bool operator==(const CacheAlignedAllocator<U>&) const noexcept { return true; }
 };
 
+/// CacheAlignedAllocator whose value-less construct() default-initialises: resize() leaves
+/// trivial elements uninitialised (for buffers that are written right after, e.g. leaf blocks).
+template <class T>
+struct UninitCacheAlignedAllocator : CacheAlignedAllocator<T> {
+  using value_type = T;
+  template <class U>
+  struct rebind {
+    using other = UninitCacheAlignedAllocator<U>;
+  };
+  UninitCacheAlignedAllocator() = default;
+  template <class U>
+  UninitCacheAlignedAllocator(const UninitCacheAlignedAllocator<U>&) noexcept {}
+  template <class U>
+  void construct(U* p) noexcept(noexcept(::new(static_cast<void*>(p)) U)) {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <class U, class... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(static_cast<Args&&>(args)...);
+  }
+  template <class U>
+  bool operator==(const UninitCacheAlignedAllocator<U>&) const noexcept { return true; }
+};
+
+using BvhNodes = std::vector<BvhNode, CacheAlignedAllocator<BvhNode>>;
+
 /// Axis-aligned box of one primitive, double precision (input to the build).
 struct PrimBox {
   double lo[3];
@@ -56,7 +84,7 @@ struct BvhBuildOptions {
 
 /// The tree. nodes[0] is the root, nodes[1] is unused padding, pairs start at index 2.
 struct Bvh {
-  std::vector<BvhNode, CacheAlignedAllocator<BvhNode>> nodes;
+  BvhNodes nodes;
   std::vector<std::int32_t> prims;  ///< slot → primitive index (leaf order)
   int max_depth = 0;                ///< depth of the deepest leaf (root = 0)
 
@@ -76,6 +104,67 @@ inline std::uint64_t spread_bits_21(std::uint64_t x) {
   x = (x | x << 4) & 0x10c30c30c30c30c3ULL;
   x = (x | x << 2) & 0x1249249249249249ULL;
   return x;
+}
+
+/// The quantisation of the LBVH build: primitive centres (box centres) → 21-bit cells per
+/// axis over the centres' bounding box → 63-bit Morton code (x in the highest bit of each
+/// triple).
+struct MortonGrid {
+  double lo[3] = {0.0, 0.0, 0.0};     ///< lower corner of the centres' bounds
+  double scale[3] = {0.0, 0.0, 0.0};  ///< cells per unit length (0 on a flat axis)
+
+  /// The grid over centres bounded by [lo, hi] (per axis, lo <= hi).
+  static MortonGrid over(const double* lo, const double* hi) {
+    MortonGrid g;
+    for (int k = 0; k < 3; ++k) {
+      const double ext = hi[k] - lo[k];
+      g.lo[k] = lo[k];
+      g.scale[k] = ext > 0.0 ? static_cast<double>((1u << 21) - 1) / ext : 0.0;
+    }
+    return g;
+  }
+  /// Morton code of centre c (inside the bounds).
+  std::uint64_t code(const double* c) const {
+    std::uint64_t code = 0;
+    for (int k = 0; k < 3; ++k) {
+      const auto cell = static_cast<std::uint64_t>((c[k] - lo[k]) * scale[k]);
+      code |= spread_bits_21(cell) << (2 - k);
+    }
+    return code;
+  }
+};
+
+/// LBVH topology over primitives already sorted by Morton code (`sorted_codes`, ascending):
+/// each range is split where its highest differing bit flips (equal codes: halved) until it
+/// has at most `max_leaf` primitives. Fills `nodes` (root at 0, padding at 1, child pairs
+/// after their parent, pre-order); a leaf's first/count is its range of sorted slots. Boxes
+/// are left unset: the caller sets the leaves' and then calls fit_inner_boxes(). Returns the
+/// depth of the deepest leaf (at most 63 bit levels plus log2(n) halvings); no keys give no
+/// nodes. Used by Bvh::build (Morton) and by ClosestPointIndex, which computes its codes and
+/// leaf boxes straight from the mesh.
+int build_morton_topology(const std::vector<std::uint64_t>& sorted_codes, int max_leaf,
+                          BvhNodes& nodes);
+
+/// Sets every inner node's box to the union of its children's (leaves must be set already;
+/// children always follow their parent, so one backwards sweep suffices).
+void fit_inner_boxes(BvhNodes& nodes);
+
+/// Largest float <= x (x not NaN): outward rounding of a box's lower corner. Same value as
+/// std::nextafter on the nearest float when that one is above x, without the libm call.
+inline float round_down_to_float(double x) {
+  const auto f = static_cast<float>(x);
+  if (!(static_cast<double>(f) > x)) return f;
+  if (f == 0.0f) return -std::numeric_limits<float>::denorm_min();
+  const auto bits = std::bit_cast<std::uint32_t>(f);
+  return std::bit_cast<float>(f > 0.0f ? bits - 1 : bits + 1);  // +inf → FLT_MAX
+}
+/// Smallest float >= x (x not NaN): outward rounding of a box's upper corner.
+inline float round_up_to_float(double x) {
+  const auto f = static_cast<float>(x);
+  if (!(static_cast<double>(f) < x)) return f;
+  if (f == 0.0f) return std::numeric_limits<float>::denorm_min();
+  const auto bits = std::bit_cast<std::uint32_t>(f);
+  return std::bit_cast<float>(f > 0.0f ? bits + 1 : bits - 1);  // -inf → -FLT_MAX
 }
 
 }  // namespace breastfit::spatial::detail

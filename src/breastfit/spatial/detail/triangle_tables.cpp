@@ -2,11 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <memory>
 #include <numeric>
 #include <utility>
 
 #include "breastfit/core/errors.h"
 #include "breastfit/spatial/detail/point_triangle_kernel.h"
+#include "breastfit/spatial/detail/radix_sort.h"
 
 namespace breastfit::spatial::detail {
 
@@ -39,45 +42,60 @@ std::vector<std::uint8_t> triangle_flags(const TriangleMesh& mesh,
     }
   }
   // Undirected edges bucketed by their smaller vertex (counting sort), then counted within a
-  // bucket: linear time, no hashing.
-  std::vector<std::int32_t> start(static_cast<std::size_t>(nv) + 1, 0);
+  // bucket with a per-vertex stamp: linear time, no hashing, no sorting.
+  const Index* F = mesh.F.data();  // row-major #F by 3
+  const std::size_t nh = 3 * static_cast<std::size_t>(nf);
+  // end[u]: first the bucket sizes, then (prefix sums) where bucket u starts, and after the
+  // fill where it ends; bucket u is [u > 0 ? end[u - 1] : 0, end[u]).
+  std::vector<std::uint32_t> end(static_cast<std::size_t>(nv) + 1, 0);
   for (Index f = 0; f < nf; ++f) {
-    for (int k = 0; k < 3; ++k) {
-      const Index u = mesh.F(f, k), w = mesh.F(f, (k + 1) % 3);
-      start[std::min(u, w) + 1]++;
-    }
+    const Index* t = F + 3 * static_cast<std::ptrdiff_t>(f);
+    end[std::min(t[0], t[1]) + 1]++;
+    end[std::min(t[1], t[2]) + 1]++;
+    end[std::min(t[2], t[0]) + 1]++;
   }
-  std::partial_sum(start.begin(), start.end(), start.begin());
-  struct HalfEdge {
-    Index other;
+  std::partial_sum(end.begin(), end.end(), end.begin());
+  struct Edge {
+    Index other;  // larger vertex (the bucket is the smaller one)
     Index face;
-    int corner;
   };
-  std::vector<HalfEdge> edges(3 * static_cast<std::size_t>(nf));
-  std::vector<std::int32_t> fill(start.begin(), start.end() - 1);
+  const std::unique_ptr<Edge[]> edges(new Edge[nh]);  // uninitialised: every slot is filled
   for (Index f = 0; f < nf; ++f) {
+    const Index* t = F + 3 * static_cast<std::ptrdiff_t>(f);
     for (int k = 0; k < 3; ++k) {
-      const Index u = mesh.F(f, k), w = mesh.F(f, (k + 1) % 3);
-      edges[fill[std::min(u, w)]++] = {std::max(u, w), f, k};
+      const Index u = t[k], w = t[k == 2 ? 0 : k + 1];
+      edges[end[std::min(u, w)]++] = {std::max(u, w), f};
     }
   }
   if (vertex_boundary != nullptr) vertex_boundary->assign(nv, 0);
   static constexpr std::uint8_t kEdgeBit[3] = {kFlagBoundaryEdge01, kFlagBoundaryEdge12,
                                                kFlagBoundaryEdge20};
+  // While bucket u is counted, stamp[w] is 2u for an edge {u, w} met once so far and 2u + 1
+  // for one met again (stale values from other buckets never equal 2u or 2u + 1).
+  std::vector<std::uint32_t> stamp(nv, 0xffffffffu);
+  std::uint32_t bucket_begin = 0;
   for (Index u = 0; u < nv; ++u) {
-    auto b = edges.begin() + start[u], e = edges.begin() + start[u + 1];
-    std::sort(b, e, [](const HalfEdge& x, const HalfEdge& y) { return x.other < y.other; });
-    for (auto it = b; it != e;) {
-      auto run = it + 1;
-      while (run != e && run->other == it->other) ++run;
-      if (run - it == 1 && it->other != u) {
-        flags[it->face] |= kEdgeBit[it->corner];
-        if (vertex_boundary != nullptr) {
-          (*vertex_boundary)[u] = 1;
-          (*vertex_boundary)[it->other] = 1;
-        }
+    const Edge* b = edges.get() + bucket_begin;
+    const Edge* e = edges.get() + end[u];
+    bucket_begin = end[u];
+    const std::uint32_t once = 2 * static_cast<std::uint32_t>(u);
+    for (const Edge* it = b; it != e; ++it) {  // branch-free: first or repeated use
+      std::uint32_t& s = stamp[it->other];
+      s = (s >> 1) == static_cast<std::uint32_t>(u) ? once + 1 : once;
+    }
+    for (const Edge* it = b; it != e; ++it) {
+      const Index w = it->other;
+      if (stamp[w] != once || w == u) continue;
+      // An open edge: exactly one face has it, and at exactly one corner.
+      const Index* t = F + 3 * static_cast<std::ptrdiff_t>(it->face);
+      for (int k = 0; k < 3; ++k) {
+        const Index a = t[k], c = t[k == 2 ? 0 : k + 1];
+        if (std::min(a, c) == u && std::max(a, c) == w) flags[it->face] |= kEdgeBit[k];
       }
-      it = run;
+      if (vertex_boundary != nullptr) {
+        (*vertex_boundary)[u] = 1;
+        (*vertex_boundary)[w] = 1;
+      }
     }
   }
   return flags;
@@ -141,18 +159,58 @@ std::vector<std::uint32_t> morton_order(const Points& P) {
   const Vec3 hi = P.colwise().maxCoeff();
   const double ext = std::max((hi - lo).maxCoeff(), 1e-300);
   const double scale = static_cast<double>((1u << 21) - 1) / ext;
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> keys(n);
+  std::vector<std::uint64_t> keys(n);
   for (std::size_t i = 0; i < n; ++i) {
     std::uint64_t code = 0;
     for (int k = 0; k < 3; ++k) {
       const auto cell = static_cast<std::uint64_t>((P(static_cast<Index>(i), k) - lo[k]) * scale);
       code |= spread_bits_21(cell) << k;
     }
-    keys[i] = {code, static_cast<std::uint32_t>(i)};
+    keys[i] = code;
   }
-  std::sort(keys.begin(), keys.end());
-  for (std::size_t i = 0; i < n; ++i) order[i] = keys[i].second;
+  radix_sort_pairs(keys, order, 63);  // stable: ties by row index
   return order;
+}
+
+MortonSorted triangle_morton_order(const TriangleMesh& mesh) {
+  const Index nf = mesh.num_faces();
+  const double* V = mesh.V.data();
+  const Index* F = mesh.F.data();
+  // The centre of the face's box, exactly as 0.5 * (lo + hi) of triangle_boxes().
+  auto centre = [&](Index f, double* c) {
+    const double* a = V + 3 * static_cast<std::ptrdiff_t>(F[3 * static_cast<std::ptrdiff_t>(f)]);
+    const double* b =
+        V + 3 * static_cast<std::ptrdiff_t>(F[3 * static_cast<std::ptrdiff_t>(f) + 1]);
+    const double* d =
+        V + 3 * static_cast<std::ptrdiff_t>(F[3 * static_cast<std::ptrdiff_t>(f) + 2]);
+    for (int k = 0; k < 3; ++k) {
+      const double lo = std::min({a[k], b[k], d[k]});
+      const double hi = std::max({a[k], b[k], d[k]});
+      c[k] = 0.5 * (lo + hi);
+    }
+  };
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  double clo[3] = {kInf, kInf, kInf}, chi[3] = {-kInf, -kInf, -kInf};
+  for (Index f = 0; f < nf; ++f) {
+    double c[3];
+    centre(f, c);
+    for (int k = 0; k < 3; ++k) {
+      clo[k] = std::min(clo[k], c[k]);
+      chi[k] = std::max(chi[k], c[k]);
+    }
+  }
+  const MortonGrid grid = MortonGrid::over(clo, chi);
+  MortonSorted out;
+  out.codes.resize(nf);
+  out.prims.resize(nf);
+  for (Index f = 0; f < nf; ++f) {
+    double c[3];
+    centre(f, c);
+    out.codes[f] = grid.code(c);
+    out.prims[f] = static_cast<std::uint32_t>(f);
+  }
+  radix_sort_pairs(out.codes, out.prims, 63);
+  return out;
 }
 
 }  // namespace breastfit::spatial::detail

@@ -40,6 +40,15 @@ std::vector<PrimBox> triangle_boxes(const TriangleMesh& mesh);
 bool feature_on_boundary(ClosestFeature feature, std::uint8_t flags, Index v0, Index v1,
                          Index v2, const std::vector<std::uint8_t>& vertex_boundary);
 
+/// Faces sorted by the 63-bit Morton code (MortonGrid) of their box centres: the input of the
+/// LBVH build. Same codes and order as Bvh::build(triangle_boxes(mesh)) uses, without the
+/// boxes.
+struct MortonSorted {
+  std::vector<std::uint64_t> codes;  ///< ascending
+  std::vector<std::uint32_t> prims;  ///< face of each code; ties by face index
+};
+MortonSorted triangle_morton_order(const TriangleMesh& mesh);
+
 /// Row indices of P (#P by 3, finite) sorted along a 3D Morton (Z-order) curve over P's
 /// bounding box, 21 bits per axis; ties by row index.
 std::vector<std::uint32_t> morton_order(const Points& P);
