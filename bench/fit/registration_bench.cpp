@@ -1,6 +1,6 @@
 // Benchmarks of the registration's parts and of a whole fit, on a synthetic case made from the
 // shipped default template (no external data): scan index build, correspondences, normal
-// equations assembly, one LM iteration, and the full registration (what report.json's time_s
+// equations assembly, one LM iteration, the surface-detail layer, and the full registration (what report.json's time_s
 // measures).
 #include <benchmark/benchmark.h>
 
@@ -9,6 +9,7 @@
 #include "breastfit/fit/lm_solver.h"
 #include "breastfit/fit/problem.h"
 #include "breastfit/fit/registration.h"
+#include "breastfit/fit/surface_detail.h"
 #include "breastfit/fit/initialization.h"
 #include "breastfit/mesh/landmarks.h"
 #include "breastfit/model/template_library.h"
@@ -104,6 +105,22 @@ void BM_OneLmIteration(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_OneLmIteration)->Unit(benchmark::kMillisecond);
+
+void BM_SurfaceDetail(benchmark::State& state) {
+  auto& f = fixture();
+  fit::FitOptions no_detail;
+  no_detail.detail.enabled = false;
+  const auto fitted = fit::register_template(f.model, *f.scan, f.targets, no_detail);
+  int kept = 0;
+  for (auto _ : state) {
+    const auto d = fit::fit_surface_detail(fitted.vertices, f.model.rest.F, *f.scan, f.options.correspondences,
+                                           f.options.detail);
+    kept = d.kept;
+    benchmark::DoNotOptimize(d.offsets.data());
+  }
+  state.counters["kept"] = kept;
+}
+BENCHMARK(BM_SurfaceDetail)->Unit(benchmark::kMillisecond);
 
 void BM_FullRegistration(benchmark::State& state) {
   auto& f = fixture();
