@@ -70,20 +70,20 @@ SurfaceDetail fit_surface_detail(const Points& V, const Triangles& F, const Scan
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver;
   solver.analyzePattern(A);
 
-  CorrespondenceOptions co = correspondences;
-  co.kernel = RobustKernel::None;  // weights are set below from the residual left by the last pass
+  // The pairs' own IRLS weights (of the distance before any offset) are not used: the weights
+  // below come from the residual the previous pass left.
   std::vector<Index> hints(n, -1);
   Eigen::VectorXd h = Eigen::VectorXd::Zero(n);
   for (int pass = 0; pass < o.passes; ++pass) {
     const Points Vd = displaced(V, N, h);
     CorrespondenceStats st;
-    const auto pairs = find_correspondences(Vd, N, scan, co, o.max_distance_mm, 1, &st, &hints);
+    const auto pairs = find_correspondences(Vd, N, scan, correspondences, o.max_distance_mm, 1, &st, &hints);
     Eigen::VectorXd diag = base_diag;
     Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n);
     for (const auto& c : pairs) {
       const Vec3 ni = N.row(c.vertex).transpose();
       const double cosang = ni.dot(c.normal);
-      if (cosang < 0.2) continue;
+      if (cosang < 0.2) continue;  // only with a normal-angle limit beyond ~78° (default 60°)
       // Offset along n_i that puts the vertex on the scan's tangent plane at the match.
       const double r = c.normal.dot(c.target - V.row(c.vertex).transpose()) / cosang;
       const double w = pass == 0 ? 1.0 : robust_weight(RobustKernel::GemanMcClure, r - h[c.vertex], o.kernel_scale_mm);
