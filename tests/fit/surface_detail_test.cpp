@@ -7,30 +7,14 @@
 
 #include "breastfit/core/errors.h"
 #include "breastfit/mesh/normals.h"
+#include "support/grid_mesh.h"
 
 namespace breastfit::fit {
 namespace {
 
-// A square grid in the plane z = height(x, y), x and y in [-half, half], counter-clockwise seen
-// from +z (normals +z for a flat grid).
+// A square grid z = height(x, y), x and y in [-half, half] (half a multiple of step).
 TriangleMesh grid(double half, double step, const std::function<double(double, double)>& height) {
-  const int n = static_cast<int>(std::lround(2 * half / step)) + 1;
-  TriangleMesh m;
-  m.V.resize(n * n, 3);
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) {
-      const double x = -half + i * step, y = -half + j * step;
-      m.V.row(i * n + j) << x, y, height(x, y);
-    }
-  m.F.resize(2 * (n - 1) * (n - 1), 3);
-  Index f = 0;
-  for (int i = 0; i + 1 < n; ++i)
-    for (int j = 0; j + 1 < n; ++j) {
-      const Index a = i * n + j, b = (i + 1) * n + j, c = (i + 1) * n + j + 1, d = i * n + j + 1;
-      m.F.row(f++) << a, b, c;
-      m.F.row(f++) << a, c, d;
-    }
-  return m;
+  return test::grid_mesh(static_cast<int>(std::lround(half / step)), step, height);
 }
 
 double bump(double x, double y) { return 4.0 * std::exp(-(x * x + y * y) / (2 * 30.0 * 30.0)); }

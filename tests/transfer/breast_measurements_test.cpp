@@ -10,27 +10,12 @@
 #include "breastfit/core/errors.h"
 #include "breastfit/model/pose_evaluator.h"
 #include "breastfit/model/template_library.h"
+#include "support/grid_mesh.h"
 
 namespace breastfit::transfer {
 namespace {
 
-// A (2n+1)² grid with spacing h on the plane z = 0 (CCW seen from +z), centred at the origin.
-TriangleMesh grid(int n, double h) {
-  const int m = 2 * n + 1;
-  TriangleMesh g;
-  g.V.resize(m * m, 3);
-  for (int i = 0; i < m; ++i)
-    for (int j = 0; j < m; ++j) g.V.row(i * m + j) << (i - n) * h, (j - n) * h, 0.0;
-  g.F.resize(2 * (m - 1) * (m - 1), 3);
-  int f = 0;
-  for (int i = 0; i + 1 < m; ++i)
-    for (int j = 0; j + 1 < m; ++j) {
-      const int a = i * m + j, b = (i + 1) * m + j, c = (i + 1) * m + j + 1, d = i * m + j + 1;
-      g.F.row(f++) << a, b, c;
-      g.F.row(f++) << a, c, d;
-    }
-  return g;
-}
+TriangleMesh grid(int n, double h) { return test::grid_mesh(n, h); }
 
 TEST(BreastMeasurements, SphericalCapOnAPlane) {
   TriangleMesh g = grid(60, 1.0);  // 120 x 120 mm

@@ -55,13 +55,7 @@ FitDirectory read_fit_directory(const fs::path& dir, const model::RiggedModel* m
   out.dir = dir;
   const fs::path report = dir / "report.json";
   if (fs::exists(report, ec)) {
-    std::ifstream f(report);
-    nlohmann::json j;
-    try {
-      j = nlohmann::json::parse(f);
-    } catch (const nlohmann::json::exception& e) {
-      throw IoError(report.string(), std::string("not valid JSON: ") + e.what());
-    }
+    const nlohmann::json j = read_json_file(report);
     if (j.contains("units")) {
       if (!j["units"].is_string() || (j["units"] != "mm" && j["units"] != "m"))
         throw IoError(report.string(), "\"units\" must be \"mm\" or \"m\"");
