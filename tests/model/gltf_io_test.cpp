@@ -32,6 +32,7 @@ void expect_same_model(const RiggedModel& a, const RiggedModel& b) {
     EXPECT_EQ(a.bones[j].axes, b.bones[j].axes);
     EXPECT_EQ(a.bones[j].scale_lo, b.bones[j].scale_lo);
     EXPECT_EQ(a.bones[j].scale_hi, b.bones[j].scale_hi);
+    EXPECT_EQ(a.bones[j].scale_stiffness, b.bones[j].scale_stiffness);
   }
   EXPECT_LT((Eigen::MatrixXd(a.weights) - Eigen::MatrixXd(b.weights)).cwiseAbs().maxCoeff(), 1e-6);
   ASSERT_EQ(a.num_blendshapes(), b.num_blendshapes());
@@ -68,7 +69,8 @@ void expect_same_model(const RiggedModel& a, const RiggedModel& b) {
 }
 
 TEST(GltfIo, ToyModelRoundTripsThroughGltfAndGlb) {
-  const RiggedModel toy = test::make_toy_model();
+  RiggedModel toy = test::make_toy_model();
+  toy.bones[1].scale_stiffness = Vec3(1.0, 5.0, 2.5);  // non-default: must survive the round trip
   const auto dir = test::temp_dir();
   for (const char* file : {"toy.gltf", "toy.glb", "TOY.GLB"}) {
     SCOPED_TRACE(file);

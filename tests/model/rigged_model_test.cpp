@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <functional>
 
 #include "breastfit/core/errors.h"
@@ -63,6 +64,8 @@ TEST(RiggedModel, ValidateNamesTheFirstViolation) {
   expect_invalid([](RiggedModel& m) { m.bones[0].axes.col(0) *= -1; }, "right-handed");
   expect_invalid([](RiggedModel& m) { m.bones[3].scale_lo.x() = 0; }, "must be > 0");
   expect_invalid([](RiggedModel& m) { m.bones[3].scale_lo.y() = 3; }, "scale bounds");
+  expect_invalid([](RiggedModel& m) { m.bones[3].scale_stiffness.z() = 0; }, "scale stiffness");
+  expect_invalid([](RiggedModel& m) { m.bones[3].scale_stiffness.x() = std::nan(""); }, "scale stiffness");
   expect_invalid([](RiggedModel& m) { m.weights.coeffRef(5, m.weights.innerIndexPtr()[m.weights.outerIndexPtr()[5]]) += 0.1; },
                  "vertex 5");
   expect_invalid([](RiggedModel& m) { m.weights.conservativeResize(m.num_vertices(), 3); }, "skin weights");

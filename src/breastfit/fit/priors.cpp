@@ -33,14 +33,15 @@ PriorCosts add_priors(const model::PoseEvaluator& ev, const PriorScales& s, Norm
   for (int j = 0; j < model.num_bones(); ++j) {
     const auto& bp = p.bones[j];
     const int off = layout.bone_offset(j);
-    // E_S
+    // E_S, weighted per axis by the template's stiffness
     for (int a = 0; a < 3; ++a) {
       const double r = bp.scale[a] - 1.0;
-      cost.scale += s.scale * r * r;
+      const double w = s.scale * model.bones[j].scale_stiffness[a];
+      cost.scale += w * r * r;
       if (eq) {
         const int idx = off + 6 + a;
         const double one = 1.0;
-        eq->add_row(&idx, &one, 1, r, s.scale);
+        eq->add_row(&idx, &one, 1, r, w);
       }
     }
     // E_J rotation relative to the parent

@@ -559,6 +559,8 @@ RiggedModel Loader::run() {
         }
         if (e.contains("scale_lo")) bone.scale_lo = json_vec3(e["scale_lo"], w + ".scale_lo");
         if (e.contains("scale_hi")) bone.scale_hi = json_vec3(e["scale_hi"], w + ".scale_hi");
+        if (e.contains("scale_stiffness"))
+          bone.scale_stiffness = json_vec3(e["scale_stiffness"], w + ".scale_stiffness");
       }
     } else {
       bone.name = "root";
@@ -928,6 +930,7 @@ void save_gltf(const std::filesystem::path& path, const RiggedModel& model) {
     ex["axes"] = json::array({vec_json(b.axes.col(0)), vec_json(b.axes.col(1)), vec_json(b.axes.col(2))});
     ex["scale_lo"] = vec_json(b.scale_lo);
     ex["scale_hi"] = vec_json(b.scale_hi);
+    if (b.scale_stiffness != Vec3::Ones()) ex["scale_stiffness"] = vec_json(b.scale_stiffness);
     jn.extras = to_value(json{{"breastfit", ex}});
     g.nodes.push_back(jn);
     const int node_index = 2 + j;

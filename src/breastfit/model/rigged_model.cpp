@@ -89,6 +89,8 @@ void RiggedModel::validate() const {
     if (b.scale_lo.minCoeff() <= 0) fail(who + ": scale lower bound " + vec_str(b.scale_lo) + " must be > 0");
     if ((b.scale_hi - b.scale_lo).minCoeff() < 0)
       fail(who + ": scale bounds lo " + vec_str(b.scale_lo) + " > hi " + vec_str(b.scale_hi));
+    if (!b.scale_stiffness.allFinite() || b.scale_stiffness.minCoeff() <= 0)
+      fail(who + ": scale stiffness " + vec_str(b.scale_stiffness) + " must be finite and > 0");
   }
 
   // Skin weights.

@@ -21,6 +21,10 @@ struct Bone {
   Mat3 axes = Mat3::Identity();  ///< rest axes, orthonormal columns, right-handed
   Vec3 scale_lo = Vec3::Constant(0.5);  ///< lower bound of each scale (> 0)
   Vec3 scale_hi = Vec3::Constant(2.0);  ///< upper bound of each scale
+  /// Per-axis weight of the scale prior E_S (1 = the fit's λS; > 1 = stiffer). The template's
+  /// anatomy knowledge: e.g. a breast's base on the chest wall varies less between women than
+  /// its projection, so the breast bones' in-plane scales are stiffer (template_skeleton.cpp).
+  Vec3 scale_stiffness = Vec3::Ones();
 };
 
 /// A named linear shape: displacement (mm at weight 1) of a sparse set of vertices.
