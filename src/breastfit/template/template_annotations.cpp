@@ -202,7 +202,7 @@ TemplateAnnotations template_annotations(const TemplateMesh& tm, const BodyField
     for (Vec3& p : fine)
       if (p.z() > zmid && zhi > zmid) {
         const double u = (p.z() - zmid) / (zhi - zmid);
-        p = walk_down(m, p, o.contour_top_lowering_mm * u * u);
+        p = walk_down(m, p, o.contour_top_lowering_mm * u);  // linear: the top stays rounded
       }
     auto pts = smooth_closed_curve(m, fine, o.contour_smoothing_mm, o.drawing_spacing_mm);
     // Start at the most superior point.

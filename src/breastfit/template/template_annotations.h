@@ -17,10 +17,10 @@ struct AnnotationOptions {
   double footprint_height_mm = 1.5;  ///< breast mound (lowest-point search, breast regions) = where the breast lifts the skin by more than this
   double footprint_margin_mm = 4.0;  ///< breast contour = where the skin lies within this of the breast's ellipsoid (the gland)
   double contour_smoothing_mm = 8.0; ///< Gaussian smoothing of the breast contours along their length
-  /// The upper half of the contour is lowered by up to this at its top (∝ the squared height above
-  /// the contour's mid-height): the gland's upper pole thins out into the chest wall, and the
+  /// The upper half of the contour is lowered by up to this at its top (∝ the height above the
+  /// contour's mid-height): the gland's upper pole thins out into the chest wall, and the
   /// footprint's upper border (2nd–3rd rib) lies below the gland ellipsoid's 4 mm line.
-  double contour_top_lowering_mm = 20.0;
+  double contour_top_lowering_mm = 15.0;
   double xiphoid_z = -200.0;         ///< height of the xiphoid tip below the notch (z), mm
 };
 
