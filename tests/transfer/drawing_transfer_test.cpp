@@ -2,7 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
+#include <vector>
 
 #include "breastfit/core/errors.h"
 #include "breastfit/mesh/normals.h"
@@ -74,6 +76,8 @@ TEST(DrawingTransfer, ProjectionModesOnNoisySynthCases) {
     for (ProjectionMode mode : {ProjectionMode::ClosestPoint, ProjectionMode::AlongNormal}) {
       TransferOptions opt;
       opt.mode = mode;
+      opt.fold_facing_down_cos = 1;  // the synthetic truth is the template's material curve, which the
+                                     // fold slide deliberately leaves under a hanging breast
       const auto curves = transfer_drawings(torso(), true_fit(c), scan, opt);
       double sum = 0;
       for (const auto& tc : curves) {
@@ -161,6 +165,12 @@ TEST(DrawingTransfer, ValidatesOptionsAndInput) {
   o = {};
   o.smoothing_weight = 2;
   EXPECT_THROW(o.validate(), InvalidInput);
+  o = {};
+  o.fold_facing_down_cos = 0;
+  EXPECT_THROW(o.validate(), InvalidInput);
+  o = {};
+  o.fold_max_slide_mm = -1;
+  EXPECT_THROW(o.validate(), InvalidInput);
   const synth::SynthCase c = synth::make_case(torso(), clean_options(6));
   const fit::ScanTarget scan(c.scan);
   EXPECT_THROW(transfer_drawings(torso(), Points(3, 3), scan), InvalidInput);
@@ -169,6 +179,68 @@ TEST(DrawingTransfer, ValidatesOptionsAndInput) {
   fitted.F = torso().rest.F;
   const DrawingTransfer t(scan, fitted);
   EXPECT_THROW(t.transfer("empty", false, Points(0, 3)), InvalidInput);
+}
+
+// A chest wall (y = 0, facing anterior −y) with a hanging "breast" on it, extruded along x: the
+// profile (y, z) runs down the wall, out and down the breast's front, back along its flat
+// underside (facing down) to the fold at (0, 40), and down the wall again.
+TriangleMesh overhang_mesh() {
+  const std::vector<Vec2> corners = {{0, 120}, {0, 90}, {-40, 70}, {-40, 40}, {0, 40}, {0, 0}};
+  std::vector<Vec2> profile;
+  for (size_t k = 0; k + 1 < corners.size(); ++k) {
+    const int n = static_cast<int>(std::ceil((corners[k + 1] - corners[k]).norm() / 2.0));
+    for (int s = 0; s < n; ++s) profile.push_back(corners[k] + (corners[k + 1] - corners[k]) * (double(s) / n));
+  }
+  profile.push_back(corners.back());
+  const int nx = 51, nk = static_cast<int>(profile.size());
+  TriangleMesh m;
+  m.V.resize(nx * nk, 3);
+  for (int i = 0; i < nx; ++i)
+    for (int k = 0; k < nk; ++k) m.V.row(i * nk + k) = Vec3(-50 + 2.0 * i, profile[k].x(), profile[k].y()).transpose();
+  m.F.resize(2 * (nx - 1) * (nk - 1), 3);
+  Index f = 0;
+  for (int i = 0; i + 1 < nx; ++i)
+    for (int k = 0; k + 1 < nk; ++k) {
+      const Index a = i * nk + k, b = (i + 1) * nk + k, c = i * nk + k + 1, d = (i + 1) * nk + k + 1;
+      m.F.row(f++) << a, c, b;  // outward = anterior / down
+      m.F.row(f++) << b, c, d;
+    }
+  return m;
+}
+
+TEST(DrawingTransfer, PointsUnderAHangingBreastSlideBackIntoTheFold) {
+  const TriangleMesh m = overhang_mesh();
+  const fit::ScanTarget scan(m);
+  DrawingTransfer t(scan, m);
+  const Vec3 underside(0, -30, 40), front(0, -40, 55), wall(0, 0, 20);
+  // Without body axes, nothing moves.
+  EXPECT_LT((t.slide_into_fold(underside) - underside).norm(), 1e-9);
+  EXPECT_THROW(t.set_body_axes(Vec3(0, 0, 1), Vec3(0, -1, 0.5)), InvalidInput);
+  t.set_body_axes(Vec3(0, 0, 1), Vec3(0, -1, 0));
+  // On the underside (facing down): back along it to the fold, at the chest wall.
+  const Vec3 slid = t.slide_into_fold(underside);
+  EXPECT_GT(slid.y(), -3.0) << slid.transpose();
+  EXPECT_NEAR(slid.z(), 40.0, 3.0) << slid.transpose();
+  EXPECT_NEAR(slid.x(), 0.0, 1e-6);
+  // Skin that does not face down stays.
+  EXPECT_LT((t.slide_into_fold(front) - front).norm(), 1e-9);
+  EXPECT_LT((t.slide_into_fold(wall) - wall).norm(), 1e-9);
+  // The slide is bounded, and off when the threshold is 1.
+  TransferOptions shorter;
+  shorter.fold_max_slide_mm = 10;
+  DrawingTransfer t10(scan, m, shorter);
+  t10.set_body_axes(Vec3(0, 0, 1), Vec3(0, -1, 0));
+  EXPECT_NEAR(t10.slide_into_fold(underside).y(), -20.0, 1.0);
+  TransferOptions off;
+  off.fold_facing_down_cos = 1;
+  DrawingTransfer t_off(scan, m, off);
+  t_off.set_body_axes(Vec3(0, 0, 1), Vec3(0, -1, 0));
+  EXPECT_LT((t_off.slide_into_fold(underside) - underside).norm(), 1e-9);
+  // A curve drawn along the underside ends up along the fold.
+  Points line(21, 3);
+  for (int i = 0; i < 21; ++i) line.row(i) = Vec3(-20 + 2.0 * i, -25, 40).transpose();
+  const TransferredCurve c = t.transfer("imf", false, line);
+  for (Eigen::Index i = 0; i < c.points.rows(); ++i) EXPECT_GT(c.points(i, 1), -3.0) << c.points.row(i);
 }
 
 TEST(DrawingTransfer, ToMarkupsKeepsNamesAndClosedness) {
@@ -220,6 +292,8 @@ TEST(DrawingTransfer, AfterARealFitTransferIsNoWorseThanTheModelCurves) {
     for (ProjectionMode mode : {ProjectionMode::ClosestPoint, ProjectionMode::AlongNormal}) {
       TransferOptions opt;
       opt.mode = mode;
+      opt.fold_facing_down_cos = 1;  // the synthetic truth is the template's material curve, which the
+                                     // fold slide deliberately leaves under a hanging breast
       const auto curves = transfer_drawings(torso(), r.fit.vertices, scan, opt);
       for (const auto& tc : curves) {
         if (tc.name.rfind("breast_contour", 0) != 0 && tc.name != "sternum") continue;

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "breastfit/core/errors.h"
+#include "breastfit/transfer/curve_region.h"
 
 namespace breastfit::transfer {
 namespace {
@@ -179,13 +180,24 @@ BreastMeasurements measure_breasts(const model::RiggedModel& model, const Points
       m.warnings.push_back("drawings imf_" + s + " and breast_contour_" + s + " missing");
     }
 
-    const auto r = model.region_index("breast_" + s);
-    if (r && !model.regions[static_cast<size_t>(*r)].vertices.empty()) {
-      const RegionVolume rv = region_volume(skin, model.regions[static_cast<size_t>(*r)].vertices, options);
-      b.volume_ml = rv.volume_mm3 / 1000.0;
-      if (rv.volume_mm3 < 0) m.warnings.push_back("breast_" + s + " volume is negative (the skin lies under the chest-wall fill)");
+    // Volume: the skin inside the breast contour against a chest wall spanning the contour
+    // (curve_region.h) — the same rule `breastfit volume` and the bench validation apply.
+    const auto c = model.drawing_index("breast_contour_" + s);
+    if (c && model.drawings[static_cast<size_t>(*c)].points.size() >= 3) {
+      const auto& pts = model.drawings[static_cast<size_t>(*c)].points;
+      Points curve(static_cast<Index>(pts.size()), 3);
+      for (size_t i = 0; i < pts.size(); ++i) curve.row(static_cast<Index>(i)) = pts[i].position(posed_mm, F).transpose();
+      try {
+        CurveVolumeOptions co;
+        co.volume = options;
+        co.target_edge_mm = 4.0;  // within 0.5 % of finer refinements (docs/TRANSFER.md), 4x fewer faces than 2 mm
+        b.volume_ml = curve_volume(skin, curve, co).volume_ml;
+        if (*b.volume_ml < 0) m.warnings.push_back("breast_" + s + " volume is negative (the skin lies under the chest-wall fill)");
+      } catch (const InvalidInput& e) {
+        m.warnings.push_back("breast_" + s + " volume not measured: " + e.what());
+      }
     } else {
-      m.warnings.push_back("region breast_" + s + " missing");
+      m.warnings.push_back("drawing breast_contour_" + s + " missing: no volume");
     }
   }
   const auto nr = landmark("nipple_R"), nl = landmark("nipple_L");
@@ -213,8 +225,8 @@ nlohmann::json BreastMeasurements::to_json() const {
           {"chest_wall", volume_options.fill == ChestWallFill::ThinPlate ? "thin_plate" : "membrane"},
           {"chest_wall_margin_mm", volume_options.margin_mm},
           {"method",
-           "volume between the fitted breast region (template regions breast_R/L) and a chest-wall fill of the "
-           "region grown by a margin (thin plate continuing the chest wall, or harmonic membrane); straight-line distances on the fitted "
+           "volume between the fitted skin inside the breast contour (breast_contour_R/L on the fitted model) and a "
+           "chest-wall fill spanning the contour (harmonic membrane, or thin plate); straight-line distances on the fitted "
            "model; lowest fold point along xiphoid->sternal_notch"},
           {"warnings", warnings}};
 }

@@ -3,8 +3,10 @@
 /// sternal-notch-to-nipple and nipple-to-inframammary-fold distances, inter-nipple distance and
 /// left/right symmetry ratios (docs/TRANSFER.md "Breast measurements").
 ///
-/// Volume: the breast is the solid between the skin of a vertex region (the template's
-/// `breast_R` / `breast_L`, posed) and a chest-wall surface under it, a fill of the region with
+/// Volume (measure_breasts): the skin inside the breast contour `breast_contour_R/L` of the
+/// fitted model against a chest wall spanning the contour (curve_region.h: curve_volume), the
+/// same rule as `breastfit volume` on any surface and curve. Underneath, region_volume:
+/// the solid between the skin of a vertex region and a chest-wall surface under it, a fill of the region with
 /// every vertex outside it held at its skin position (ChestWallFill):
 ///  - Membrane (default): harmonic fill, Σ‖∇x‖² minimal (uniform graph Laplacian L x = 0 on the
 ///    region): depends only on the region's border, like the "surface spanning the breast

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "breastfit/core/errors.h"
+#include "breastfit/render/body_frame.h"
 #include "breastfit/spatial/ray_caster.h"
 #include "breastfit/transfer/polyline.h"
 
@@ -26,6 +27,9 @@ void TransferOptions::validate() const {
   if (!(spacing_mm > 0) || !std::isfinite(spacing_mm)) fail("spacing_mm", spacing_mm, "must be > 0");
   if (smoothing_passes < 0) fail("smoothing_passes", smoothing_passes, "must be >= 0");
   if (!(smoothing_weight >= 0 && smoothing_weight <= 1)) fail("smoothing_weight", smoothing_weight, "must be in [0, 1]");
+  if (!(fold_facing_down_cos > 0 && fold_facing_down_cos <= 1))
+    fail("fold_facing_down_cos", fold_facing_down_cos, "must be in (0, 1]");
+  if (!(fold_max_slide_mm >= 0) || !std::isfinite(fold_max_slide_mm)) fail("fold_max_slide_mm", fold_max_slide_mm, "must be >= 0");
 }
 
 struct DrawingTransfer::Rays {
@@ -84,6 +88,28 @@ DrawingTransfer::PointProjection DrawingTransfer::project_point(const Vec3& q) c
   return out;
 }
 
+void DrawingTransfer::set_body_axes(const Vec3& superior, const Vec3& anterior) {
+  if (!superior.allFinite() || !anterior.allFinite() || std::abs(superior.norm() - 1) > 1e-6 ||
+      std::abs(anterior.norm() - 1) > 1e-6 || std::abs(superior.dot(anterior)) > 1e-6)
+    throw InvalidInput("set_body_axes: superior and anterior must be orthogonal unit vectors");
+  body_axes_ = std::make_pair(superior, anterior);
+}
+
+Vec3 DrawingTransfer::slide_into_fold(const Vec3& q) const {
+  auto cp = fitted_.closest(q);
+  if (!body_axes_ || options_.fold_facing_down_cos >= 1) return cp.point;
+  const auto& [superior, anterior] = *body_axes_;
+  constexpr double kStep = 1.0;  // mm along the surface per step
+  for (double walked = 0; walked + kStep <= options_.fold_max_slide_mm; walked += kStep) {
+    const Vec3 n = fitted_.smooth_normal(cp);
+    if (-n.dot(superior) <= options_.fold_facing_down_cos) break;  // not (or no longer) under an overhang
+    const Vec3 back = -anterior - (-anterior).dot(n) * n;          // posterior, in the tangent plane
+    if (back.norm() < 1e-6) break;
+    cp = fitted_.closest(Vec3(cp.point + kStep * back.normalized()), cp.face);
+  }
+  return cp.point;
+}
+
 TransferredCurve DrawingTransfer::transfer(const std::string& name, bool closed, const Points& model_points_mm) const {
   if (model_points_mm.rows() == 0) throw InvalidInput("transfer: drawing '" + name + "' has no points");
   if (!all_finite(model_points_mm)) throw InvalidInput("transfer: drawing '" + name + "' has non-finite points");
@@ -96,7 +122,7 @@ TransferredCurve DrawingTransfer::transfer(const std::string& name, bool closed,
   const Eigen::Index n = model.rows();
   Points normals(n, 3);
   for (Eigen::Index i = 0; i < n; ++i) {
-    const auto cp = fitted_.closest(model.row(i).transpose());
+    const auto cp = fitted_.closest(slide_into_fold(model.row(i).transpose()));
     model.row(i) = cp.point.transpose();
     normals.row(i) = fitted_.smooth_normal(cp).transpose();
   }
@@ -137,7 +163,14 @@ std::vector<TransferredCurve> transfer_drawings(const model::RiggedModel& model,
   TriangleMesh fitted;
   fitted.V = posed_mm;
   fitted.F = model.rest.F;
-  const DrawingTransfer transfer(scan, fitted, options);
+  DrawingTransfer transfer(scan, fitted, options);
+  // Body axes from the fitted landmarks (for the fold slide); without them no slide.
+  render::NamedPositions lms;
+  for (const auto& l : model.landmarks) lms[l.name] = l.point.position(posed_mm, model.rest.F);
+  if (const auto frame = render::body_frame_from_landmarks(lms)) {
+    const Mat3 R = frame->body_to_world.topLeftCorner<3, 3>();
+    transfer.set_body_axes(R.col(2).normalized(), -R.col(1).normalized());  // LPS: +z superior, −y anterior
+  }
   std::vector<TransferredCurve> out;
   for (const auto& d : model.drawings) {
     Points P(static_cast<Eigen::Index>(d.points.size()), 3);

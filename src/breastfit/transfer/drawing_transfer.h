@@ -12,6 +12,8 @@
 ///   io::write_markups(dir / "drawings.mrk.json", transfer::to_markups(curves), {.units = "mm"});
 /// \endcode
 #include <memory>
+#include <optional>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -37,6 +39,13 @@ struct TransferOptions {
   double spacing_mm = 1.0;           ///< resampling step along the curve, mm (> 0)
   int smoothing_passes = 3;          ///< Laplacian passes, each followed by re-projection onto the surface (>= 0)
   double smoothing_weight = 0.5;     ///< weight of each Laplacian pass, in [0, 1]
+  /// Hanging breasts: a model point on skin facing caudally (−n·superior above this) lies on the
+  /// underside of an overhang, while the fold — where a surgeon draws the IMF — is behind it, at
+  /// the chest wall. Such a point slides posteriorly along the fitted surface until the skin stops
+  /// facing down (docs/TRANSFER.md "Hanging breasts"). Needs the body's axes (set_body_axes;
+  /// transfer_drawings takes them from the fitted landmarks). In (0, 1]; 1 = never.
+  double fold_facing_down_cos = 0.5;
+  double fold_max_slide_mm = 60.0;   ///< longest slide, mm (>= 0)
 
   /// \throws InvalidInput naming the field, its value and the rule it violates
   void validate() const;
@@ -76,6 +85,14 @@ class DrawingTransfer {
   };
   PointProjection project_point(const Vec3& q) const;
 
+  /// The body's superior and anterior directions (unit, orthogonal) in the scan frame: enables
+  /// the fold slide of TransferOptions::fold_facing_down_cos in transfer().
+  void set_body_axes(const Vec3& superior, const Vec3& anterior);
+
+  /// A point of the fitted surface moved out of an overhang (see fold_facing_down_cos); the
+  /// point's closest surface point when it is not under one or no body axes are set.
+  Vec3 slide_into_fold(const Vec3& q) const;
+
   const TransferOptions& options() const { return options_; }
 
  private:
@@ -85,6 +102,7 @@ class DrawingTransfer {
   const fit::ScanTarget& scan_;
   spatial::ClosestPointIndex fitted_;
   TransferOptions options_;
+  std::optional<std::pair<Vec3, Vec3>> body_axes_;  // superior, anterior
   struct Rays;
   std::unique_ptr<Rays> rays_;  // only for ProjectionMode::AlongNormal
 };
