@@ -5,6 +5,9 @@
 #include <array>
 #include <cstdio>
 #include <cstdlib>
+#include <string>
+#include <system_error>
+#include <vector>
 #include <sys/wait.h>
 
 namespace breastfit::test {
@@ -12,6 +15,29 @@ namespace breastfit::test {
 std::filesystem::path data_dir() { return BREASTFIT_TEST_DATA_DIR; }
 std::filesystem::path source_dir() { return BREASTFIT_SOURCE_DIR; }
 std::filesystem::path cli_path() { return BREASTFIT_CLI_PATH; }
+
+namespace {
+
+// Every directory temp_dir() made, removed when the test process exits normally (set
+// BREASTFIT_KEEP_TEST_DIRS=1 to keep them for debugging).
+struct TempDirRegistry {
+  std::vector<std::filesystem::path> dirs;
+  ~TempDirRegistry() {
+    const char* keep = std::getenv("BREASTFIT_KEEP_TEST_DIRS");
+    if (keep && *keep && std::string(keep) != "0") return;
+    for (const auto& d : dirs) {
+      std::error_code ec;
+      std::filesystem::remove_all(d, ec);
+    }
+  }
+};
+
+TempDirRegistry& temp_dirs() {
+  static TempDirRegistry registry;
+  return registry;
+}
+
+}  // namespace
 
 std::filesystem::path temp_dir() {
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
@@ -23,6 +49,7 @@ std::filesystem::path temp_dir() {
              ("breastfit_test_" + std::to_string(::getpid()) + "_" + name);
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
+  temp_dirs().dirs.push_back(dir);
   return dir;
 }
 

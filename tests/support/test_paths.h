@@ -11,7 +11,8 @@ std::filesystem::path data_dir();
 std::filesystem::path source_dir();
 /// The built `breastfit` executable (empty when the CLI is not built).
 std::filesystem::path cli_path();
-/// A fresh, empty temporary directory unique to the calling test (removed at exit).
+/// A fresh, empty temporary directory unique to the calling test (removed when the test process
+/// exits normally; BREASTFIT_KEEP_TEST_DIRS=1 keeps it).
 std::filesystem::path temp_dir();
 
 /// Runs the CLI with the given argument string through /bin/sh; returns the exit code and
