@@ -9,6 +9,7 @@
 #include "breastfit/core/errors.h"
 #include "breastfit/io/io.h"
 #include "breastfit/io/markups.h"
+#include "support/grid_mesh.h"
 #include "support/test_paths.h"
 
 namespace breastfit::transfer {
@@ -30,22 +31,7 @@ std::vector<TransferredCurve> sample_curves() {
 }
 
 // A flat grid 200 x 200 mm, 2 mm spacing, z = 5 (the loop lies on it).
-TriangleMesh grid() {
-  const int n = 101;
-  TriangleMesh m;
-  m.V.resize(n * n, 3);
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) m.V.row(i * n + j) << -100 + 2.0 * i, -100 + 2.0 * j, 5.0;
-  m.F.resize(2 * (n - 1) * (n - 1), 3);
-  int f = 0;
-  for (int i = 0; i + 1 < n; ++i)
-    for (int j = 0; j + 1 < n; ++j) {
-      const int a = i * n + j, b = (i + 1) * n + j, c = (i + 1) * n + j + 1, d = i * n + j + 1;
-      m.F.row(f++) << a, b, c;
-      m.F.row(f++) << a, c, d;
-    }
-  return m;
-}
+TriangleMesh grid() { return test::grid_mesh(50, 2.0, [](double, double) { return 5.0; }); }
 
 TEST(DrawingOutputs, PlyHasVerticesAndEdgesPerCurve) {
   const auto path = test::temp_dir() / "drawings.ply";
