@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "breastfit/mesh/normals.h"
-#include "breastfit/synth/subdivision.h"
+#include "breastfit/mesh/subdivision.h"
 
 namespace breastfit::synth {
 namespace {
@@ -15,7 +15,7 @@ TriangleMesh sphere(double r, int steps) {
   m.V << 1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1;
   m.F.resize(8, 3);
   m.F << 0, 2, 4, 2, 1, 4, 1, 3, 4, 3, 0, 4, 2, 0, 5, 1, 2, 5, 3, 1, 5, 0, 3, 5;
-  for (int k = 0; k < steps; ++k) m = subdivide(m, false);
+  for (int k = 0; k < steps; ++k) m = mesh::subdivide(m, false);
   for (Index v = 0; v < m.num_vertices(); ++v) m.V.row(v) = r * m.V.row(v).normalized();
   return m;
 }

@@ -7,7 +7,7 @@
 #include "breastfit/mesh/components.h"
 #include "breastfit/mesh/normals.h"
 #include "breastfit/spatial/closest_point_index.h"
-#include "breastfit/synth/subdivision.h"
+#include "breastfit/mesh/subdivision.h"
 #include "support/toy_model.h"
 
 namespace breastfit::synth {
@@ -15,7 +15,7 @@ namespace {
 
 TriangleMesh dense_toy() {
   TriangleMesh m = test::make_toy_model().rest;
-  for (int k = 0; k < 2; ++k) m = subdivide(m, true);
+  for (int k = 0; k < 2; ++k) m = mesh::subdivide(m, true);
   return m;
 }
 

@@ -5,7 +5,7 @@
 #include <numbers>
 
 #include "breastfit/core/errors.h"
-#include "breastfit/synth/subdivision.h"
+#include "breastfit/mesh/subdivision.h"
 
 namespace breastfit::synth {
 namespace {
@@ -16,7 +16,7 @@ TriangleMesh sphere(double r) {
   m.V << 1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1;
   m.F.resize(8, 3);
   m.F << 0, 2, 4, 2, 1, 4, 1, 3, 4, 3, 0, 4, 2, 0, 5, 1, 2, 5, 3, 1, 5, 0, 3, 5;
-  for (int k = 0; k < 5; ++k) m = subdivide(m, false);
+  for (int k = 0; k < 5; ++k) m = mesh::subdivide(m, false);
   for (Index v = 0; v < m.num_vertices(); ++v) m.V.row(v) = r * m.V.row(v).normalized();
   return m;
 }

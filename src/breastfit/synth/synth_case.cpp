@@ -16,7 +16,7 @@
 #include "breastfit/spatial/closest_point_index.h"
 #include "breastfit/synth/camera_rig.h"
 #include "breastfit/synth/scan_defects.h"
-#include "breastfit/synth/subdivision.h"
+#include "breastfit/mesh/subdivision.h"
 #include "breastfit/synth/subject_pose.h"
 #include "breastfit/synth/truth_curves.h"
 
@@ -121,17 +121,17 @@ SynthCase make_case(const model::RiggedModel& model, const SynthOptions& options
   for (const auto& l : model.landmarks) lm_sp.push_back(l.point);
   std::vector<std::vector<SurfacePoint>> dr_sp;
   for (const auto& d : model.drawings) dr_sp.push_back(d.points);
-  const double coarse_edge = median_edge_length(truth);
+  const double coarse_edge = mesh::median_edge_length(truth);
   int steps = 0;
-  while (steps < options.refinement.max_steps && median_edge_length(truth) > options.refinement.target_edge_mm &&
+  while (steps < options.refinement.max_steps && mesh::median_edge_length(truth) > options.refinement.target_edge_mm &&
          static_cast<double>(truth.num_faces()) * 4.0 <= options.refinement.max_faces) {
-    truth = subdivide(truth, options.refinement.loop);
-    for (auto& p : lm_sp) p = refine_surface_point(p);
+    truth = mesh::subdivide(truth, options.refinement.loop);
+    for (auto& p : lm_sp) p = mesh::refine_surface_point(p);
     for (auto& d : dr_sp)
-      for (auto& p : d) p = refine_surface_point(p);
+      for (auto& p : d) p = mesh::refine_surface_point(p);
     ++steps;
   }
-  const double dense_edge = median_edge_length(truth);
+  const double dense_edge = mesh::median_edge_length(truth);
 
   // ---- smooth deformation outside the model's space ----
   Rng rng_deform = stage_rng(options.seed, 2);

@@ -16,6 +16,8 @@
 #include <Eigen/Eigenvalues>
 
 #include "breastfit/core/errors.h"
+#include "breastfit/mesh/subdivision.h"
+#include "breastfit/spatial/knn_index.h"
 #include "breastfit/spatial/point_triangle.h"
 #include "breastfit/transfer/polyline.h"
 
@@ -90,70 +92,6 @@ double mean_edge_length(const Points& V, const Triangles& F) {
   return F.rows() ? s / (3.0 * static_cast<double>(F.rows())) : 0.0;
 }
 
-/// Uniform grid over a subset of points for exact nearest-point queries within a radius.
-class PointGrid {
- public:
-  PointGrid(const Points& P, const std::vector<Index>& ids, const Vec3& lo, double cell) : P_(P), lo_(lo), cell_(cell) {
-    cells_.reserve(ids.size());
-    for (Index i : ids) {
-      const Eigen::Vector3i c = cell_of(P.row(i).transpose());
-      cmin_ = cmin_.cwiseMin(c);
-      cmax_ = cmax_.cwiseMax(c);
-      cells_.push_back({key(c), i});
-    }
-    std::sort(cells_.begin(), cells_.end());
-  }
-
-  /// Nearest point to p within max_dist (ties: lowest index), or -1.
-  std::pair<Index, double> nearest(const Vec3& p, double max_dist) const {
-    if (cells_.empty()) return {-1, kInf};
-    const Eigen::Vector3i c = cell_of(p);
-    Index best = -1;
-    double best_d2 = kInf;
-    // Beyond this ring there are no stored cells.
-    const int span = std::max((c - cmin_).cwiseAbs().maxCoeff(), (c - cmax_).cwiseAbs().maxCoeff());
-    const int rmax = static_cast<int>(std::min<double>(span, std::ceil(max_dist / cell_) + 1));
-    for (int r = 0; r <= rmax; ++r) {
-      for (int dx = -r; dx <= r; ++dx)
-        for (int dy = -r; dy <= r; ++dy)
-          for (int dz = -r; dz <= r; ++dz) {
-            if (std::max({std::abs(dx), std::abs(dy), std::abs(dz)}) != r) continue;
-            const Eigen::Vector3i q = c + Eigen::Vector3i(dx, dy, dz);
-            if ((q.array() < cmin_.array()).any() || (q.array() > cmax_.array()).any()) continue;
-            const std::uint64_t k = key(q);
-            auto it = std::lower_bound(cells_.begin(), cells_.end(), std::pair<std::uint64_t, Index>{k, -1});
-            for (; it != cells_.end() && it->first == k; ++it) {
-              const double d2 = (P_.row(it->second).transpose() - p).squaredNorm();
-              if (d2 < best_d2 || (d2 == best_d2 && it->second < best)) {
-                best_d2 = d2;
-                best = it->second;
-              }
-            }
-          }
-      // Every point of a cell at Chebyshev ring r + 1 is at least r cells away from p.
-      if (best >= 0 && best_d2 <= (r * cell_) * (r * cell_)) break;
-    }
-    if (best < 0 || best_d2 > max_dist * max_dist) return {-1, kInf};
-    return {best, std::sqrt(best_d2)};
-  }
-
- private:
-  static constexpr int kHalf = 1 << 20;  ///< cell coordinates are kept in [-kHalf, kHalf)
-  Eigen::Vector3i cell_of(const Vec3& p) const {
-    const Eigen::Array3d q = ((p - lo_) / cell_).array().floor().cwiseMax(-kHalf).cwiseMin(kHalf - 1);
-    return q.cast<int>().matrix();
-  }
-  static std::uint64_t key(const Eigen::Vector3i& c) {
-    const auto u = [](int x) { return static_cast<std::uint64_t>(x + kHalf); };
-    return (u(c.x()) << 42) | (u(c.y()) << 21) | u(c.z());
-  }
-  const Points& P_;
-  Vec3 lo_;
-  double cell_;
-  Eigen::Vector3i cmin_ = Eigen::Vector3i::Constant(kHalf), cmax_ = Eigen::Vector3i::Constant(-kHalf);
-  std::vector<std::pair<std::uint64_t, Index>> cells_;
-};
-
 /// Closest point to p on the triangles around vertex v (the surface near v).
 Vec3 closest_on_fan(const Vec3& p, Index v, const Points& V, const Triangles& F, const Csr& vf) {
   Vec3 best = V.row(v);
@@ -187,15 +125,14 @@ bool inside_polygon(const Vec2& p, const std::vector<Vec2>& poly) {
 /// Closed curve samples with a grid for nearest-point queries and local tangents.
 struct SampledCurve {
   Points S;              ///< #S by 3 samples, closed
-  std::unique_ptr<PointGrid> grid;
+  std::unique_ptr<spatial::KnnIndex> grid;  ///< over S
   double spacing = 0;
 
   /// Nearest point on the polyline near p (through its nearest sample) and the tangent there
   /// (averaged over the two segments at a sample).
   std::pair<Vec3, Vec3> nearest(const Vec3& p) const {
     const Index n = static_cast<Index>(S.rows());
-    Index k = grid->nearest(p, kInf).first;
-    if (k < 0) k = 0;
+    const Index k = grid->closest(p).index;
     Vec3 best_c = S.row(k);
     double best_d = (best_c - p).squaredNorm();
     const Vec3 t_prev = (S.row(k) - S.row((k + n - 1) % n)).transpose();
@@ -344,8 +281,15 @@ CurveRegion find_region(const TriangleMesh& mesh, const Points& closed_curve_mm,
     const Vec3 p = V.row(v);
     if ((p.array() >= lo.array()).all() && (p.array() <= hi.array()).all()) near_ids.push_back(v);
   }
-  const double cell = std::max({h, reach / 8.0, (hi - lo).maxCoeff() / 1e6});
-  const PointGrid vgrid(V, near_ids, lo, cell);
+  Points near_points(static_cast<Eigen::Index>(near_ids.size()), 3);
+  for (size_t k = 0; k < near_ids.size(); ++k) near_points.row(static_cast<Eigen::Index>(k)) = V.row(near_ids[k]);
+  const spatial::KnnIndex vgrid(near_points);
+  // The vertex near the curve nearest to p within reach, or -1.
+  auto nearest_vertex = [&](const Vec3& p) -> Index {
+    if (near_ids.empty()) return -1;
+    const spatial::Neighbor nb = vgrid.closest(p);
+    return nb.sq_dist <= reach * reach ? near_ids[static_cast<size_t>(nb.index)] : -1;
+  };
   // From here on the curve is its samples' feet on the surface (the closest surface point, on the
   // triangles around the nearest vertex): a curve drawn on a scan lies a few mm off a fit of it,
   // and off the surface its sides would be blurred where the surface is steep.
@@ -354,11 +298,11 @@ CurveRegion find_region(const TriangleMesh& mesh, const Points& closed_curve_mm,
   double dist_sum = 0;
   for (Index i = 0; i < ns; ++i) {
     const Vec3 p = curve.S.row(i);
-    const Index v = vgrid.nearest(p, reach).first;
+    const Index v = nearest_vertex(p);
     if (v < 0) continue;
     const Vec3 foot = closest_on_fan(p, v, V, F, vf);
     dist_sum += (foot - p).norm();
-    const Index w = vgrid.nearest(foot, reach).first;
+    const Index w = nearest_vertex(foot);
     snapped.push_back(w >= 0 ? w : v);
     feet.push_back(foot);
   }
@@ -506,11 +450,7 @@ CurveRegion find_region(const TriangleMesh& mesh, const Points& closed_curve_mm,
   // pieces; the vertex is inside when, seen from the surface point q nearest to c, it lies in
   // the direction of its inside neighbours rather than of its outside ones. This holds at sharp
   // folds too (a ptotic breast's underside over the chest), where a normal-based side test fails.
-  curve.grid = std::make_unique<PointGrid>(curve.S, [&] {
-    std::vector<Index> ids(static_cast<size_t>(nfeet));
-    for (Index i = 0; i < nfeet; ++i) ids[static_cast<size_t>(i)] = i;
-    return ids;
-  }(), curve.S.colwise().minCoeff().transpose(), std::max(2 * curve.spacing, length / 1e6));
+  curve.grid = std::make_unique<spatial::KnnIndex>(curve.S);
   std::vector<char> loop_inside(loop.size(), 0);
   for (size_t i = 0; i < loop.size(); ++i) {
     const Index v = loop[i];
@@ -567,33 +507,6 @@ std::vector<Index> vertices_inside_curve(const TriangleMesh& mesh, const Points&
 namespace {
 
 /// Midpoint (1 → 4) subdivision: the same surface with edges half as long, orientation kept.
-TriangleMesh subdivide(const TriangleMesh& m) {
-  TriangleMesh out;
-  const Index nv = m.num_vertices();
-  std::unordered_map<std::uint64_t, Index> mid;
-  mid.reserve(static_cast<size_t>(m.num_faces()) * 2);
-  std::vector<Vec3> extra;
-  auto midpoint = [&](Index a, Index b) {
-    const std::uint64_t k = (static_cast<std::uint64_t>(std::min(a, b)) << 32) | static_cast<std::uint32_t>(std::max(a, b));
-    auto [it, added] = mid.try_emplace(k, nv + static_cast<Index>(extra.size()));
-    if (added) extra.push_back(0.5 * (m.V.row(a) + m.V.row(b)).transpose());
-    return it->second;
-  };
-  out.F.resize(4 * m.F.rows(), 3);
-  for (Eigen::Index f = 0; f < m.F.rows(); ++f) {
-    const Index a = m.F(f, 0), b = m.F(f, 1), c = m.F(f, 2);
-    const Index ab = midpoint(a, b), bc = midpoint(b, c), ca = midpoint(c, a);
-    out.F.row(4 * f + 0) << a, ab, ca;
-    out.F.row(4 * f + 1) << ab, b, bc;
-    out.F.row(4 * f + 2) << ca, bc, c;
-    out.F.row(4 * f + 3) << ab, bc, ca;
-  }
-  out.V.resize(nv + static_cast<Eigen::Index>(extra.size()), 3);
-  out.V.topRows(nv) = m.V;
-  for (size_t i = 0; i < extra.size(); ++i) out.V.row(nv + static_cast<Eigen::Index>(i)) = extra[i].transpose();
-  return out;
-}
-
 }  // namespace
 
 CurveVolume curve_volume(const TriangleMesh& mesh, const Points& closed_curve_mm, const CurveVolumeOptions& options) {
@@ -655,7 +568,7 @@ CurveVolume curve_volume(const TriangleMesh& mesh, const Points& closed_curve_mm
 
   while (options.target_edge_mm > 0 && mean_edge_length(patch.V, patch.F) > options.target_edge_mm &&
          4 * static_cast<double>(patch.num_faces()) <= static_cast<double>(options.max_refined_faces)) {
-    patch = subdivide(patch);
+    patch = mesh::subdivide(patch, /*loop=*/false);
     ++out.refinement_levels;
   }
   // On the refined patch the border of the measured region is the loop itself, moved onto the

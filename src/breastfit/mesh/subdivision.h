@@ -5,7 +5,7 @@
 #include "breastfit/mesh/surface_point.h"
 #include "breastfit/mesh/triangle_mesh.h"
 
-namespace breastfit::synth {
+namespace breastfit::mesh {
 
 /// One subdivision step: every triangle (v0, v1, v2) with edge points m01, m12, m20 becomes the
 /// four triangles 4f+0 = (v0, m01, m20), 4f+1 = (v1, m12, m01), 4f+2 = (v2, m20, m12),
@@ -28,4 +28,4 @@ SurfacePoint refine_surface_point(const SurfacePoint& p);
 /// in mesh units; 0 for a mesh without triangles.
 double median_edge_length(const TriangleMesh& mesh);
 
-}  // namespace breastfit::synth
+}  // namespace breastfit::mesh

@@ -1,4 +1,4 @@
-#include "breastfit/synth/subdivision.h"
+#include "breastfit/mesh/subdivision.h"
 
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 #include "breastfit/mesh/components.h"
 #include "support/toy_model.h"
 
-namespace breastfit::synth {
+namespace breastfit::mesh {
 namespace {
 
 TriangleMesh open_grid() {
@@ -99,4 +99,4 @@ TEST(Subdivision, RejectsBadIndices) {
 }
 
 }  // namespace
-}  // namespace breastfit::synth
+}  // namespace breastfit::mesh

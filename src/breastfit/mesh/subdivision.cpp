@@ -1,4 +1,4 @@
-#include "breastfit/synth/subdivision.h"
+#include "breastfit/mesh/subdivision.h"
 
 #include <algorithm>
 #include <array>
@@ -7,7 +7,7 @@
 
 #include "breastfit/core/errors.h"
 
-namespace breastfit::synth {
+namespace breastfit::mesh {
 namespace {
 
 struct HalfEdge {
@@ -154,4 +154,4 @@ double median_edge_length(const TriangleMesh& mesh) {
   return *mid;
 }
 
-}  // namespace breastfit::synth
+}  // namespace breastfit::mesh
