@@ -1,6 +1,7 @@
 #include "command_support.h"
 
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 
@@ -65,6 +66,16 @@ std::optional<mesh::Units> parse_units_flag(const std::string& text) {
   const auto u = mesh::parse_units(text);
   if (!u) throw InvalidInput("--units '" + text + "': expected auto, mm or m");
   return u;
+}
+
+void check_output_file(const std::string& path, const std::vector<std::string>& inputs, bool force,
+                       const std::string& force_flag) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!fs::exists(path, ec)) return;
+  for (const std::string& in : inputs)
+    if (fs::equivalent(path, in, ec)) throw IoError(path, "is an input: choose another output");
+  if (!force) throw IoError(path, "already exists (use " + force_flag + " to replace it)");
 }
 
 model::RiggedModel load_template(const std::string& path) {

@@ -4,6 +4,7 @@
 #include <optional>
 #include <ostream>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -31,6 +32,10 @@ void add_fit_flags(CLI::App& sub, FitFlags& flags);
 fit::FitOptions load_fit_options(const std::string& config_path, const FitFlags& flags);
 /// "auto" → nullopt, "mm"/"m" → the units.
 std::optional<mesh::Units> parse_units_flag(const std::string& text);
+/// Before writing an output file: refuses (IoError naming the file) when it is one of `inputs`,
+/// or when it exists and `force` is false. Nothing the user gave is overwritten.
+void check_output_file(const std::string& path, const std::vector<std::string>& inputs, bool force,
+                       const std::string& force_flag = "--force");
 /// The template at `path`, or the shipped default when empty. \throws IoError / InvalidInput.
 model::RiggedModel load_template(const std::string& path);
 /// One line per iteration on stderr unless quiet.

@@ -54,12 +54,7 @@ void register_map(CLI::App& app, int& exit_code) {
                   : fs::path(o).replace_extension().string()) +
              ".confidence.json";
     }
-    std::error_code ec;
-    for (const fs::path& p : {fs::path(args->out), fs::path(conf)}) {
-      if (fs::exists(p, ec) && fs::equivalent(p, args->input, ec))
-        throw IoError(p.string(), "is the input: choose another --out");
-      if (!args->force && fs::exists(p, ec)) throw IoError(p.string(), "already exists (use --force to replace it)");
-    }
+    for (const std::string& p : {args->out, conf}) check_output_file(p, {args->input}, args->force);
 
     const model::RiggedModel model = load_template(args->template_path);
     const transfer::FitDirectory a = transfer::read_fit_directory(args->from, &model);

@@ -3,7 +3,6 @@
 // contour a surgeon drew on a scan, the contours `register` transferred onto its fit, or a
 // ground-truth surface with its contours (docs/TRANSFER.md "Breast measurements").
 #include <cstdio>
-#include <filesystem>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -50,14 +49,7 @@ void register_volume(CLI::App& app, int& exit_code) {
   sub->add_flag("--regions", args->regions, "with --json: include each curve's region (mesh vertex indices)");
   sub->add_flag("--quiet,-q", args->quiet, "no table on stdout");
   sub->callback([args, &exit_code] {
-    if (!args->json.empty()) {  // before any work: never overwrite an input, nor a file without --force
-      namespace fs = std::filesystem;
-      std::error_code ec;
-      for (const std::string& in : {args->mesh, args->curves})
-        if (fs::exists(args->json, ec) && fs::equivalent(args->json, in, ec))
-          throw IoError(args->json, "is an input: choose another --json");
-      if (!args->force && fs::exists(args->json, ec)) throw IoError(args->json, "already exists (use --force to replace it)");
-    }
+    if (!args->json.empty()) check_output_file(args->json, {args->mesh, args->curves}, args->force);  // before any work
     TriangleMesh mesh = io::read_mesh(args->mesh);
     if (mesh.is_point_cloud()) throw InvalidInput(args->mesh + ": a point cloud; volume needs a triangle mesh");
     mesh::Units units;
