@@ -57,18 +57,17 @@ void register_bench(CLI::App& app, int& exit_code) {
   sub->add_option("--json", args->json_out, "also write every number to this JSON file");
   add_fit_flags(*sub, args->fit);
   sub->callback([args, &exit_code] {
-    const auto model = load_template(args->template_path);
+    const auto model = std::make_shared<const model::RiggedModel>(load_template(args->template_path));
     auto options = load_fit_options(args->config, args->fit);
     if (args->no_landmarks) options.use_landmarks = false;
     nlohmann::json cases = nlohmann::json::array();
     std::vector<double> medians;
     std::printf("%-24s %9s %6s %10s %10s %8s\n", "case", "time_s", "iters", "surf_mae", "lm_mae", "status");
     for (const auto& dir : case_dirs(args->dir)) {
-      const TriangleMesh scan = io::read_mesh(dir / "scan.ply");
       pipeline::RegisterRequest req;
-      req.scan = &scan;
+      req.scan = io::read_mesh(dir / "scan.ply");
       req.scan_name = (dir / "scan.ply").string();
-      req.model = &model;
+      req.model = model;
       req.options = options;
       if (!args->no_landmarks && std::filesystem::exists(dir / "landmarks.mrk.json"))
         req.landmarks = io::read_landmarks(dir / "landmarks.mrk.json");

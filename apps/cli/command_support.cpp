@@ -1,5 +1,6 @@
 #include "command_support.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -8,6 +9,8 @@
 #include <nlohmann/json.hpp>
 
 #include "breastfit/core/errors.h"
+#include "breastfit/fit/energy_terms.h"
+#include "breastfit/fit/fit_options_json.h"
 #include "breastfit/model/gltf_io.h"
 #include "breastfit/model/template_library.h"
 #include "breastfit/pipeline/register_scan.h"
@@ -16,13 +19,15 @@ namespace breastfit::cli {
 
 void add_fit_flags(CLI::App& sub, FitFlags& f) {
   auto* g = sub.add_option_group("fit weights", "energy weights (E = Σ term/λ; smaller λ = stronger term)");
-  g->add_option("--lambda-data", f.lambda_data, "λD, data term (mm²)");
-  g->add_option("--lambda-reverse", f.lambda_reverse, "λR, reverse data term (mm²; <= 0 disables)");
-  g->add_option("--lambda-landmarks", f.lambda_landmarks, "λL, landmark term (mm²)");
-  g->add_option("--lambda-scale", f.lambda_scale, "λS, bone scale regulariser");
-  g->add_option("--lambda-blendshapes", f.lambda_blendshapes, "λBS, blendshape regulariser");
-  g->add_option("--lambda-joints", f.lambda_joints, "λJ, joint regulariser");
-  g->add_option("--lambda-continuity", f.lambda_continuity, "λC, joint continuity penalty (mm²)");
+  for (const auto& t : fit::energy_terms()) {
+    std::string flag = "--lambda-" + std::string(t.name);
+    std::replace(flag.begin(), flag.end(), '_', '-');
+    char help[256];
+    std::snprintf(help, sizeof help, "%s, %s (%s; default %g%s)", std::string(t.symbol).c_str(),
+                  std::string(t.help).c_str(), std::string(t.units).c_str(), t.default_lambda,
+                  t.can_disable ? "; <= 0 disables" : "");
+    g->add_option(flag, f.lambdas[std::string(t.name)], help);
+  }
   g->add_option("--max-blendshapes", f.max_blendshapes, "use only the first N blendshapes");
   g->add_option("--max-landmarks", f.max_landmarks, "use only the first N landmarks (paper order)");
   g->add_flag("--no-surface-detail", f.no_surface_detail,
@@ -46,14 +51,8 @@ fit::FitOptions load_fit_options(const std::string& config_path, const FitFlags&
       throw IoError(config_path, e.what());
     }
   }
-  auto& w = o.weights;
-  if (f.lambda_data) w.lambda_data = *f.lambda_data;
-  if (f.lambda_reverse) w.lambda_reverse = *f.lambda_reverse;
-  if (f.lambda_landmarks) w.lambda_landmarks = *f.lambda_landmarks;
-  if (f.lambda_scale) w.lambda_scale = *f.lambda_scale;
-  if (f.lambda_blendshapes) w.lambda_blendshapes = *f.lambda_blendshapes;
-  if (f.lambda_joints) w.lambda_joints = *f.lambda_joints;
-  if (f.lambda_continuity) w.lambda_continuity = *f.lambda_continuity;
+  for (const auto& [term, value] : f.lambdas)
+    if (value) o.weights.set_lambda(term, *value);
   if (f.max_blendshapes) o.max_blendshapes = *f.max_blendshapes;
   if (f.max_landmarks) o.max_landmarks = *f.max_landmarks;
   if (f.no_surface_detail) o.detail.enabled = false;
@@ -88,6 +87,7 @@ fit::IterationCallback progress_printer(bool quiet) {
   return [](const fit::IterationRecord& r) {
     std::fprintf(stderr, "  %-6s %3d  E %.5g -> %.5g  d<%.1f mm  kept %d  %s\n", r.stage.c_str(), r.iteration,
                  r.energy_before, r.energy_after, r.max_distance_mm, r.kept, r.accepted ? "" : "(rejected step)");
+    return fit::CallbackResult::Continue;
   };
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 /// \file Pieces shared by the subcommands that fit: template loading, fit-option flags,
 /// progress lines and the printed summary.
+#include <map>
 #include <optional>
 #include <ostream>
 #include <string>
@@ -21,8 +22,8 @@ namespace breastfit::cli {
 
 /// λ overrides from the command line (unset = keep the config/default value).
 struct FitFlags {
-  std::optional<double> lambda_data, lambda_reverse, lambda_landmarks, lambda_scale, lambda_blendshapes,
-      lambda_joints, lambda_continuity;
+  /// One `--lambda-<term>` flag per energy term (fit/energy_terms.h), by term name.
+  std::map<std::string, std::optional<double>> lambdas;
   std::optional<int> max_blendshapes, max_landmarks;
   bool no_surface_detail = false;
 };

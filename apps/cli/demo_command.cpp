@@ -37,7 +37,8 @@ void register_demo(CLI::App& app, int& exit_code) {
     const fs::path case_dir = out / "case", fit_dir = out / "fit";
     if (!args->force && (fs::exists(case_dir) || fs::exists(fit_dir)))
       throw IoError(out.string(), "already holds a demo (use --force to replace it)");
-    const model::RiggedModel model = load_template("");
+    const auto model_ptr = std::make_shared<const model::RiggedModel>(load_template(""));
+    const model::RiggedModel& model = *model_ptr;
 
     synth::SynthOptions so;
     so.seed = args->seed;
@@ -51,10 +52,10 @@ void register_demo(CLI::App& app, int& exit_code) {
                 c.input_landmarks.size(), c.units.c_str(), case_dir.c_str());
 
     pipeline::RegisterRequest req;
-    req.scan = &c.scan;
+    req.scan = c.scan;
     req.scan_name = (case_dir / "scan.ply").string();
     req.landmarks = io::read_landmarks(case_dir / "landmarks.mrk.json");
-    req.model = &model;
+    req.model = model_ptr;
     const auto result = pipeline::register_scan(req, progress_printer(args->quiet));
     if (!result.usable()) {
       std::cerr << "breastfit: error: " << req.scan_name << ": " << result.fit.summary.message << "\n";

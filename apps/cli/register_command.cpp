@@ -48,13 +48,12 @@ void register_register(CLI::App& app, int& exit_code) {
     pipeline::check_output_dir(args->out, args->force, inputs);
 
     pipeline::RegisterRequest req;
-    const TriangleMesh scan = io::read_mesh(args->scan);
-    req.scan = &scan;
+    req.scan = io::read_mesh(args->scan);
     req.scan_name = args->scan;
     req.units = parse_units_flag(args->units);
     if (!args->landmarks.empty() && !args->no_landmarks) req.landmarks = io::read_landmarks(args->landmarks);
-    const model::RiggedModel model = load_template(args->template_path);
-    req.model = &model;
+    req.model = std::make_shared<const model::RiggedModel>(load_template(args->template_path));
+    const model::RiggedModel& model = *req.model;
     req.options = load_fit_options(args->config, args->fit);
     if (args->no_landmarks) req.options.use_landmarks = false;
 

@@ -6,7 +6,7 @@
 
 #include <memory>
 
-#include "breastfit/fit/lm_solver.h"
+#include "breastfit/fit/stage_minimizer.h"
 #include "breastfit/fit/problem.h"
 #include "breastfit/fit/registration.h"
 #include "breastfit/fit/surface_detail.h"
@@ -100,7 +100,7 @@ void BM_OneLmIteration(benchmark::State& state) {
     const auto problem = f.problem();
     model::PoseParams p = f.start;
     fit::FitSummary s;
-    fit::solve_stages(*problem, {stage}, p, s);
+    fit::minimize_stages(*problem, {stage}, p, s);
     benchmark::DoNotOptimize(p.global.scale);
   }
 }

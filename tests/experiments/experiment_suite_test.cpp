@@ -143,7 +143,7 @@ void LambdaSummaryCoversEachLambdaAndFactor(const QuickRun& q) {
   const json& l = q.result["lambdas"]["lambdas"];
   ASSERT_EQ(l.size(), 5u);
   EXPECT_EQ(l[0]["field"], "lambda_data");
-  EXPECT_DOUBLE_EQ(l[0]["default"].get<double>(), fit::EnergyWeights{}.lambda_data);
+  EXPECT_DOUBLE_EQ(l[0]["default"].get<double>(), fit::EnergyWeights{}.lambda("data"));
 }
 
 void ResolutionTemplateIsCachedAndWritesContractOutputs(const QuickRun& q) {

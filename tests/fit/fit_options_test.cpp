@@ -1,59 +1,80 @@
 #include "breastfit/fit/fit_options.h"
 
+#include <cmath>
+
 #include <gtest/gtest.h>
 
-#include <nlohmann/json.hpp>
-
 #include "breastfit/core/errors.h"
+#include "breastfit/fit/energy_terms.h"
 
 namespace breastfit::fit {
 namespace {
 
-TEST(FitOptions, DefaultsAreValidAndSurviveAJsonRoundTrip) {
-  const FitOptions defaults;
-  EXPECT_NO_THROW(defaults.validate());
-  FitOptions changed;
-  changed.weights.lambda_data = 0.7;
-  changed.correspondences.kernel = RobustKernel::Huber;
-  changed.detail.enabled = false;
-  changed.detail.smoothness = 3.5;
-  changed.refine.max_iterations = 7;
-  FitOptions read;
-  update_from_json(read, to_json(changed));
-  EXPECT_EQ(to_json(read), to_json(changed));
-  EXPECT_FALSE(read.detail.enabled);
-  EXPECT_DOUBLE_EQ(read.detail.smoothness, 3.5);
+TEST(FitOptions, DefaultsAreValid) { EXPECT_NO_THROW(FitOptions{}.validate()); }
+
+TEST(EnergyWeights, HoldsEveryTermOfTheTableAtItsDefault) {
+  const EnergyWeights w;
+  ASSERT_EQ(w.lambdas().size(), energy_terms().size());
+  for (size_t i = 0; i < energy_terms().size(); ++i) {
+    EXPECT_EQ(w.lambdas()[i].first, energy_terms()[i].name);
+    EXPECT_DOUBLE_EQ(w.lambda(energy_terms()[i].name), energy_terms()[i].default_lambda);
+  }
+  EXPECT_DOUBLE_EQ(w.lambda("data"), 0.25);  // the paper's λD as documented in REGISTRATION.md
 }
 
-TEST(FitOptions, ReadsASubsetAndKeepsTheRest) {
-  FitOptions o;
-  update_from_json(o, nlohmann::json::parse(R"({"detail": {"passes": 4}, "weights": {"lambda_landmarks": 20}})"));
-  EXPECT_EQ(o.detail.passes, 4);
-  EXPECT_DOUBLE_EQ(o.weights.lambda_landmarks, 20.0);
-  EXPECT_DOUBLE_EQ(o.detail.smoothness, FitOptions{}.detail.smoothness);
-  EXPECT_DOUBLE_EQ(o.weights.lambda_data, FitOptions{}.weights.lambda_data);
+TEST(EnergyWeights, SetsByNameAndRejectsUnknownTerms) {
+  EnergyWeights w;
+  w.set_lambda("scale", 3.0);
+  EXPECT_DOUBLE_EQ(w.lambda("scale"), 3.0);
+  EXPECT_THROW(w.set_lambda("smoothness", 1.0), InvalidInput);
+  try {
+    w.lambda("smoothness");
+    FAIL() << "expected InvalidInput";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("data, reverse"), std::string::npos) << e.what();
+  }
 }
 
-TEST(FitOptions, RejectsUnknownKeysWrongTypesAndBadValues) {
-  FitOptions o;
-  EXPECT_THROW(update_from_json(o, nlohmann::json::parse(R"({"detail": {"smoothnes": 1}})")), InvalidInput);
-  EXPECT_THROW(update_from_json(o, nlohmann::json::parse(R"({"detail": {"enabled": "yes"}})")), InvalidInput);
-  EXPECT_THROW(update_from_json(o, nlohmann::json::parse(R"({"correspondences": {"kernel": "cauchy"}})")),
-               InvalidInput);
-  EXPECT_THROW(update_from_json(o, nlohmann::json::parse(R"({"lambda_data": 1})")), InvalidInput);
-  auto invalid = [](auto change) {
+TEST(FitOptions, RejectsBadValuesNamingTheField) {
+  auto invalid = [](auto change, const std::string& field) {
     FitOptions bad;
     change(bad);
-    EXPECT_THROW(bad.validate(), InvalidInput);
+    try {
+      bad.validate();
+      ADD_FAILURE() << "expected InvalidInput for " << field;
+    } catch (const InvalidInput& e) {
+      EXPECT_NE(std::string(e.what()).find(field), std::string::npos) << e.what();
+    }
   };
-  invalid([](FitOptions& b) { b.detail.passes = -1; });
-  invalid([](FitOptions& b) { b.detail.smoothness = -0.1; });
-  invalid([](FitOptions& b) { b.detail.decay = 0; });
-  invalid([](FitOptions& b) { b.detail.max_distance_mm = std::nan(""); });
-  invalid([](FitOptions& b) { b.detail.max_offset_mm = -1; });
-  invalid([](FitOptions& b) { b.weights.lambda_data = 0; });
-  invalid([](FitOptions& b) { b.correspondences.max_distance_end_mm = 100; });
-  invalid([](FitOptions& b) { b.shape.max_iterations = -2; });
+  invalid([](FitOptions& b) { b.detail.passes = -1; }, "detail.passes");
+  invalid([](FitOptions& b) { b.detail.smoothness = -0.1; }, "detail.smoothness");
+  invalid([](FitOptions& b) { b.detail.decay = 0; }, "detail.decay");
+  invalid([](FitOptions& b) { b.detail.max_distance_mm = std::nan(""); }, "detail.max_distance_mm");
+  invalid([](FitOptions& b) { b.detail.max_offset_mm = -1; }, "detail.max_offset_mm");
+  invalid([](FitOptions& b) { b.weights.set_lambda("data", 0); }, "weights.lambda_data");
+  invalid([](FitOptions& b) { b.weights.set_lambda("landmarks", -1); }, "weights.lambda_landmarks");
+  invalid([](FitOptions& b) { b.weights.set_lambda("reverse", NAN); }, "weights.lambda_reverse");
+  invalid([](FitOptions& b) { b.correspondences.max_distance_end_mm = 100; }, "correspondences.max_distance_end_mm");
+  invalid([](FitOptions& b) { b.correspondences.schedule_ramp = 0; }, "correspondences.schedule_ramp");
+  invalid([](FitOptions& b) { b.shape.max_iterations = -2; }, "shape.max_iterations");
+  invalid([](FitOptions& b) { b.solver.function_tolerance = 0; }, "solver.function_tolerance");
+  invalid([](FitOptions& b) { b.solver.min_damping = 1.0; }, "solver.min_damping");
+  invalid([](FitOptions& b) { b.solver.max_step_attempts = 0; }, "solver.max_step_attempts");
+  invalid([](FitOptions& b) { b.solver.min_gain_ratio = 1.0; }, "solver.min_gain_ratio");
+  invalid([](FitOptions& b) { b.solver.hessian_interval = 0; }, "solver.hessian_interval");
+}
+
+TEST(FitOptions, ADisableableTermMayBeSwitchedOff) {
+  FitOptions o;
+  o.weights.set_lambda("reverse", 0.0);
+  EXPECT_NO_THROW(o.validate());
+}
+
+TEST(FitOptions, ListsTheStagesInRunOrder) {
+  const FitOptions o;
+  std::vector<std::string> names;
+  for (const StageOptions* s : o.stages()) names.push_back(s->name);
+  EXPECT_EQ(names, (std::vector<std::string>{"landmark_pose", "rigid", "pose", "shape", "refine"}));
 }
 
 }  // namespace

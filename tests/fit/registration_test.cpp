@@ -67,11 +67,11 @@ TEST(Registration, RecoversAKnownPoseWithoutNoise) {
   ScanTarget scan(scan_mesh, 500);
   FitOptions o;
   // Without noise the priors only bias the answer: make them weak.
-  o.weights.lambda_scale = o.weights.lambda_blendshapes = o.weights.lambda_joints = 1e4;
-  o.weights.lambda_continuity = 1e6;
+  for (const char* prior : {"scale", "blendshapes", "joints"}) o.weights.set_lambda(prior, 1e4);
+  o.weights.set_lambda("continuity", 1e6);
   o.correspondences.max_distance_end_mm = 5.0;
   o.shape.max_iterations = 60;
-  o.function_tolerance = 1e-9;
+  o.solver.function_tolerance = 1e-9;
   const auto r = register_template(m, scan, landmarks_of(m, scan_mesh.V), o);
   ASSERT_TRUE(r.summary.usable()) << r.summary.message;
   // Distances of the fitted vertices to the true surface (tangential sliding is not an error).
@@ -103,7 +103,7 @@ TEST(Registration, UmeyamaRecoversASimilarity) {
   EXPECT_THROW(umeyama_similarity(src.topRows(2), dst.topRows(2)), InvalidInput);
 }
 
-TEST(Registration, ReportsNonConvergenceWhenLandmarksAreNowhereNearTheScan) {
+TEST(Registration, JudgesTheFitNotUsableWhenLandmarksAreNowhereNearTheScan) {
   const auto m = test::make_toy_model();
   const TriangleMesh scan_mesh = posed_mesh(m, model::PoseParams::identity(m));
   ScanTarget scan(scan_mesh, 200);
@@ -111,7 +111,8 @@ TEST(Registration, ReportsNonConvergenceWhenLandmarksAreNowhereNearTheScan) {
   for (auto& t : lms) t.position += Vec3(2000, 0, 0);  // landmarks of another scan
   const auto r = register_template(m, scan, lms, FitOptions{});
   EXPECT_FALSE(r.summary.usable());
-  EXPECT_NE(r.summary.message.find("not converged"), std::string::npos) << r.summary.message;
+  EXPECT_NE(r.summary.message.find("not usable"), std::string::npos) << r.summary.message;
+  EXPECT_EQ(r.summary.message, r.summary.verdict.reason);
 }
 
 TEST(Registration, RejectsUnknownOrDuplicateLandmarks) {

@@ -2,16 +2,14 @@
 // One real registration shared by the report tests (report_html_test, report_figures_test):
 // the shipped template fitted to a default synthetic case (seed 7, standing), computed once per
 // test program.
+#include "support/default_template.h"
 #include "breastfit/model/template_library.h"
 #include "breastfit/pipeline/register_scan.h"
 #include "breastfit/synth/synth_case.h"
 
 namespace breastfit::test {
 
-inline const model::RiggedModel& report_test_model() {
-  static const model::RiggedModel m = model::load_default_template();
-  return m;
-}
+inline const model::RiggedModel& report_test_model() { return *test::default_template(); }
 
 inline const pipeline::RegisterResult& report_test_result() {
   static const pipeline::RegisterResult r = [] {
@@ -19,9 +17,9 @@ inline const pipeline::RegisterResult& report_test_result() {
     o.seed = 7;
     const synth::SynthCase c = synth::make_case(report_test_model(), o);
     pipeline::RegisterRequest req;
-    req.scan = &c.scan;
+    req.scan = c.scan;
     req.scan_name = "cases/synth <7>/scan.ply";  // a name that needs escaping in HTML
-    req.model = &report_test_model();
+    req.model = test::default_template();
     LandmarkSet lms;
     lms.points = c.input_landmarks;
     req.landmarks = lms;

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "support/default_template.h"
+
 #include <cmath>
 #include <cstdio>
 
@@ -99,10 +101,7 @@ TEST(BreastMeasurements, RejectsBadRegions) {
   EXPECT_THROW(region_volume(g, all), InvalidInput);
 }
 
-const model::RiggedModel& torso() {
-  static const model::RiggedModel m = model::load_default_template();
-  return m;
-}
+const model::RiggedModel& torso() { return *test::default_template(); }
 
 TEST(BreastMeasurements, TemplateIsSymmetricAndTracksBreastShapes) {
   const model::RiggedModel& m = torso();
@@ -163,8 +162,8 @@ TEST(BreastMeasurements, FittedVolumeOnSynthCases) {
     o.pose = seed % 2 ? synth::PoseType::Standing : synth::PoseType::Supine;
     const synth::SynthCase c = synth::make_case(torso(), o);
     pipeline::RegisterRequest req;
-    req.scan = &c.scan;
-    req.model = &torso();
+    req.scan = c.scan;
+    req.model = test::default_template();
     LandmarkSet lms;
     lms.points = c.input_landmarks;
     req.landmarks = lms;

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "support/default_template.h"
+
 #include <cmath>
 #include <cstdio>
 #include <vector>
@@ -17,10 +19,7 @@
 namespace breastfit::transfer {
 namespace {
 
-const model::RiggedModel& torso() {
-  static const model::RiggedModel m = model::load_default_template();
-  return m;
-}
+const model::RiggedModel& torso() { return *test::default_template(); }
 
 synth::SynthOptions clean_options(std::uint64_t seed) {
   synth::SynthOptions o;
@@ -279,8 +278,8 @@ TEST(DrawingTransfer, AfterARealFitTransferIsNoWorseThanTheModelCurves) {
     o.pose = seed % 2 ? synth::PoseType::Standing : synth::PoseType::Supine;
     const synth::SynthCase c = synth::make_case(torso(), o);
     pipeline::RegisterRequest req;
-    req.scan = &c.scan;
-    req.model = &torso();
+    req.scan = c.scan;
+    req.model = test::default_template();
     LandmarkSet lms;
     lms.points = c.input_landmarks;
     lms.declared_units = "mm";

@@ -65,11 +65,12 @@ RunRecord CaseRunner::score(const pipeline::RegisterResult& r) const {
 RunRecord CaseRunner::run(const model::RiggedModel& model, const fit::FitOptions& options,
                           const std::function<void(const pipeline::RegisterResult&)>& on_result) const {
   pipeline::RegisterRequest req;
-  req.scan = &case_.scan;
+  req.scan = case_.scan;
   req.scan_name = (case_.dir / "scan.ply").string();
   req.units = case_.units;
   req.landmarks = case_.landmarks;
-  req.model = &model;
+  // Not owned: CaseRunner::run's caller keeps `model` alive for the call (aliasing, no deleter).
+  req.model = std::shared_ptr<const model::RiggedModel>(std::shared_ptr<const void>(), &model);
   req.options = options;
   std::optional<pipeline::RegisterResult> result;
   try {

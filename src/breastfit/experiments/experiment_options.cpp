@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "breastfit/core/errors.h"
+#include "breastfit/fit/fit_options_json.h"
 
 namespace breastfit::experiments {
 
@@ -18,15 +19,23 @@ const std::vector<LambdaSpec>& sensitivity_lambdas() {
   return specs;
 }
 
-double& lambda_field(fit::EnergyWeights& w, const std::string& field) {
-  if (field == "lambda_data") return w.lambda_data;
-  if (field == "lambda_reverse") return w.lambda_reverse;
-  if (field == "lambda_landmarks") return w.lambda_landmarks;
-  if (field == "lambda_scale") return w.lambda_scale;
-  if (field == "lambda_blendshapes") return w.lambda_blendshapes;
-  if (field == "lambda_joints") return w.lambda_joints;
-  if (field == "lambda_continuity") return w.lambda_continuity;
-  throw InvalidInput("unknown λ '" + field + "'");
+namespace {
+// The energy terms a sensitivity λ stands for: the paper's λL weighs all 12 landmarks, which the
+// fit splits into material and sliding landmarks (fit/energy_terms.h).
+std::vector<std::string> terms_of(const std::string& field) {
+  if (field.rfind("lambda_", 0) != 0) throw InvalidInput("unknown λ '" + field + "'");
+  const std::string term = field.substr(7);
+  if (term == "landmarks") return {"landmarks", "sliding_landmarks"};
+  return {term};
+}
+}  // namespace
+
+double lambda_value(const fit::EnergyWeights& w, const std::string& field) {
+  return w.lambda(terms_of(field).front());
+}
+
+void scale_lambda(fit::EnergyWeights& w, const std::string& field, double factor) {
+  for (const auto& term : terms_of(field)) w.set_lambda(term, w.lambda(term) * factor);
 }
 
 bool ExperimentOptions::runs(const std::string& experiment) const {

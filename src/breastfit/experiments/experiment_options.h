@@ -24,8 +24,11 @@ struct LambdaSpec {
 };
 const std::vector<LambdaSpec>& sensitivity_lambdas();
 
-/// Value of a λ field in `weights`. \throws InvalidInput for an unknown field.
-double& lambda_field(fit::EnergyWeights& weights, const std::string& field);
+/// Value of a λ field ("lambda_<term>") in `weights`. \throws InvalidInput for an unknown field.
+double lambda_value(const fit::EnergyWeights& weights, const std::string& field);
+/// Multiplies a λ field by `factor`; "lambda_landmarks" (the paper's λL) scales the material and
+/// the sliding landmark terms together. \throws InvalidInput for an unknown field.
+void scale_lambda(fit::EnergyWeights& weights, const std::string& field, double factor);
 
 struct ExperimentOptions {
   std::vector<std::string> skip;       ///< experiments not run (names of kExperimentNames)

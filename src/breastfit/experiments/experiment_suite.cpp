@@ -198,8 +198,8 @@ nlohmann::json run_experiments(const std::vector<fs::path>& case_dirs, const mod
       for (const auto& spec : sensitivity_lambdas()) {
         for (double f : factors) {
           fit::FitOptions fo = o.fit;
-          double& v = lambda_field(fo.weights, spec.field);
-          v *= f;
+          scale_lambda(fo.weights, spec.field, f);
+          const double v = lambda_value(fo.weights, spec.field);
           const nlohmann::json setting = {{"lambda", spec.field}, {"symbol", spec.symbol}, {"factor", f}, {"value", v}};
           lambda_runs.push_back({setting, f == 1.0 ? def : run(model, fo)});
         }
@@ -255,8 +255,7 @@ nlohmann::json run_experiments(const std::vector<fs::path>& case_dirs, const mod
   if (o.runs("lambdas")) {
     nlohmann::json lambdas = nlohmann::json::array();
     for (const auto& spec : sensitivity_lambdas()) {
-      fit::EnergyWeights w = o.fit.weights;
-      lambdas.push_back({{"field", spec.field}, {"symbol", spec.symbol}, {"default", lambda_field(w, spec.field)}});
+      lambdas.push_back({{"field", spec.field}, {"symbol", spec.symbol}, {"default", lambda_value(o.fit.weights, spec.field)}});
     }
     out["lambdas"] = {{"lambdas", lambdas}, {"factors", factors}, {"runs", runs_json(lambda_runs)},
                       {"summary", summaries(lambda_runs)}};

@@ -1,6 +1,6 @@
 #pragma once
 /// \file Closest-point correspondences between the posed model and the scan, with rejection
-/// (open border, distance, normals) and robust IRLS weights (docs/DESIGN.md §3).
+/// (open border, distance, normals) and robust IRLS weights (docs/REGISTRATION.md).
 #include <vector>
 
 #include "breastfit/core/types.h"

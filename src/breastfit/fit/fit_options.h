@@ -1,40 +1,53 @@
 #pragma once
-/// \file Options of the registration (paper eqs. 4–9, docs/DESIGN.md §3–4) with their defaults.
+/// \file Options of the registration (paper eqs. 4–9, docs/REGISTRATION.md) with their defaults.
 ///
-/// Energy (all distances in mm):
+/// Energy (all distances in mm), one term per entry of the table in energy_terms.h:
 ///   E = 1/λD  · mean_{i∈C} ρ(r_i²)                 model vertex → scan, point-to-plane (+ μ point-to-point)
 ///     + 1/λR  · mean_{p∈S} ρ(r_p²)                 scan sample → model (reverse term, optional)
-///     + 1/λL  · Σ_l ‖L_l(θ) − ℓ_l‖²                landmarks present in the input
+///     + 1/λL  · Σ_l ‖L_l(θ) − ℓ_l‖²                material landmarks present in the input
+///     + 1/λLS · Σ_l ‖X_l(θ) − ℓ_l‖²                sliding landmarks (lowest breast points)
 ///     + 1/λS  · Σ_j ‖s_j − 1‖²                     bone scales (E_S)
 ///     + 1/λBS · Σ_k α_k²                           blendshape weights (E_BS, squared: smooth)
 ///     + 1/λJ  · Σ_j ‖log(R_j R_j*ᵀ)‖² + ‖(t_j − t_j*)/τ‖²   joint regulariser (E_J), τ = joint_translation_scale_mm
 ///     + 1/λC  · Σ_joints ‖P_parent(c_j) − P_child(c_j)‖²      joint continuity (stiff penalty)
 /// The data terms are means, so λD and λR do not depend on the template's resolution.
-#include <cstdint>
+/// Bone scales and blendshape weights are kept within the template's bounds by projecting every
+/// step onto them (model::ParamLayout::apply_increment), not by an energy term.
+///
+/// JSON (de)serialisation: fit_options_json.h.
 #include <string>
-
-#include <nlohmann/json_fwd.hpp>
+#include <string_view>
+#include <utility>
+#include <vector>
 
 namespace breastfit::fit {
 
 enum class RobustKernel { None, Huber, GemanMcClure };
+const char* to_string(RobustKernel k);
 
-/// Weights of the energy terms: E = Σ term / λ (the paper's convention: smaller λ = stronger term).
-struct EnergyWeights {
-  double lambda_data = 0.25;         ///< λD, mm² (mean squared point-to-plane distance)
-  double lambda_reverse = 2.0;       ///< λR, mm²; ≤ 0 disables the reverse term
-  double lambda_landmarks = 50.0;    ///< λL, mm² per landmark (sum over landmarks)
-  double lambda_scale = 0.5;         ///< λS (dimensionless)
-  double lambda_blendshapes = 10.0;  ///< λBS (dimensionless weights)
-  double lambda_joints = 1.0;        ///< λJ (rad², and (mm/τ)²)
-  double lambda_continuity = 0.05;   ///< λC, mm²
+/// λ of every energy term by the term's name (energy_terms.h): E = Σ term / λ (the paper's
+/// convention: smaller λ = stronger term). Starts at every term's default λ.
+class EnergyWeights {
+ public:
+  EnergyWeights();
+  /// λ of the term. \throws InvalidInput for a name that is not a term.
+  double lambda(std::string_view term) const;
+  /// \throws InvalidInput for a name that is not a term (the message lists the terms).
+  void set_lambda(std::string_view term, double value);
+  /// Every (term name, λ), in the table's order.
+  const std::vector<std::pair<std::string, double>>& lambdas() const { return lambdas_; }
+
   double joint_translation_scale_mm = 10.0;  ///< τ in E_J
+
+ private:
+  std::vector<std::pair<std::string, double>> lambdas_;
 };
 
-/// Which correspondences are kept (docs/DESIGN.md §3).
+/// Which correspondences are kept, and the schedule of the distance threshold.
 struct CorrespondenceOptions {
-  double max_distance_start_mm = 40.0;  ///< distance threshold at the first iteration of a stage
+  double max_distance_start_mm = 40.0;  ///< distance threshold at the first iteration of the first data stage
   double max_distance_end_mm = 15.0;    ///< threshold reached at the end (geometric decay); 10 → 15 mm: bench true-surface 2.56 → 2.48 mm at no cost (the robust kernel already down-weights far pairs)
+  double schedule_ramp = 0.5;           ///< share of a stage's iterations over which its threshold decays to the stage's end value
   double max_normal_angle_deg = 60.0;   ///< reject pairs whose normals disagree more than this
   bool reject_boundary = true;          ///< reject pairs whose closest scan feature is on an open border
   double point_to_point_weight = 0.0;   ///< μ: share of point-to-point in the data term (0 = pure point-to-plane, the paper)
@@ -50,9 +63,31 @@ struct StageOptions {
   bool global = true;        ///< similarity (rotation, translation, uniform scale)
   bool bones = false;        ///< per-bone rotation, translation, scale
   bool blendshapes = false;  ///< blendshape weights
-  int max_iterations = 10;   ///< outer (correspondence) iterations
+  int max_iterations = 10;   ///< outer (correspondence) iterations: the stage's cap
   int vertex_stride = 1;     ///< use every n-th model vertex for the data term (speed in early stages)
   bool use_data = true;      ///< false: landmarks and priors only (no correspondences)
+};
+
+/// The Levenberg–Marquardt loop (stage_minimizer.h, lm_strategy.h) and its convergence tests.
+/// The tests apply once a stage's correspondence threshold has reached its end value.
+struct SolverOptions {
+  /// Converged when an accepted step lowers the energy by less than this share of it.
+  double function_tolerance = 1e-4;
+  /// Converged when the largest gradient entry |(JᵀWr)_i| is below this (energy per parameter unit).
+  double gradient_tolerance = 1e-10;
+  /// Converged when the accepted step's largest entry is below this (rad, mm, scale or weight).
+  double parameter_tolerance = 1e-6;
+  double initial_damping = 1e-3;   ///< LM damping μ (relative to diag(JᵀWJ)) at the start of every stage
+  double min_damping = 1e-9;       ///< μ never goes below this
+  double max_damping = 1e8;        ///< a step needing more damping than this counts as no decrease
+  double damping_decrease = 3.0;   ///< μ ← μ / this after a good step (gain ratio ≥ good_gain_ratio)
+  double damping_increase = 5.0;   ///< μ ← μ · this after a rejected step
+  double good_gain_ratio = 0.0;    ///< an accepted step with a gain ratio at least this lowers μ
+  int max_step_attempts = 8;       ///< damped solves tried per iteration before giving up
+  /// A step is accepted when actual / predicted decrease ≥ this (0: any decrease).
+  double min_gain_ratio = 0.0;
+  int hessian_interval = 2;        ///< rebuild JᵀWJ every n-th iteration of a stage (1 = always);
+                                   ///< in between only the gradient is recomputed
 };
 
 /// The surface-detail layer after the parametric fit (fit/surface_detail.h; beyond the paper).
@@ -77,28 +112,21 @@ struct FitOptions {
   StageOptions pose{"pose", true, true, false, 10, 2};
   StageOptions shape{"shape", true, true, true, 10, 2};
   StageOptions refine{"refine", true, true, true, 3, 1};
+  SolverOptions solver;
   SurfaceDetailOptions detail;
-  double function_tolerance = 1e-4;  ///< stop a stage when the relative energy decrease is below this
-  double step_tolerance = 1e-6;      ///< stop a stage when the step's max-norm is below this
-  double initial_damping = 1e-3;     ///< LM damping μ relative to diag(JᵀJ)
-  int hessian_interval = 2;          ///< rebuild JᵀWJ every n-th iteration of a stage (1 = always);
-                                     ///< in between only the gradient is recomputed
   int max_blendshapes = -1;          ///< use only the first n blendshapes (experiments); < 0 = all
   int max_landmarks = -1;            ///< use only the first n landmarks in the paper's order; < 0 = all
   bool use_landmarks = true;         ///< false: landmark-free fit (landmarks only reported)
   double landmark_warning_mm = 30.0; ///< warn when an input landmark is farther than this from the scan
-  double max_surface_mae_mm = 8.0;   ///< a final kept-correspondence MAE above this = not converged
-  double min_kept_fraction = 0.25;   ///< fewer kept correspondences than this share = not converged
+  double max_surface_mae_mm = 8.0;   ///< a final kept-correspondence MAE above this = not usable
+  double min_kept_fraction = 0.25;   ///< fewer kept correspondences than this share = not usable
+
+  /// The stages in the order they run (landmark_pose, rigid, pose, shape, refine).
+  std::vector<const StageOptions*> stages() const;
+  std::vector<StageOptions*> stages();
 
   /// \throws InvalidInput naming the field, its value and the rule violated.
   void validate() const;
 };
-
-/// Reads any subset of the options from JSON (same names as the fields; weights under "weights",
-/// correspondence options under "correspondences", stages under "rigid"/"pose"/"shape").
-/// \throws InvalidInput for unknown keys or wrong types.
-void update_from_json(FitOptions& options, const nlohmann::json& j);
-/// All options as JSON (written into report.json).
-nlohmann::json to_json(const FitOptions& options);
 
 }  // namespace breastfit::fit

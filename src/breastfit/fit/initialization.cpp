@@ -8,7 +8,7 @@
 #include <Eigen/Geometry>
 
 #include "breastfit/core/errors.h"
-#include "breastfit/fit/lm_solver.h"
+#include "breastfit/fit/stage_minimizer.h"
 #include "breastfit/fit/problem.h"
 #include "breastfit/mesh/landmark_names.h"
 #include "breastfit/model/pose_evaluator.h"
@@ -169,7 +169,7 @@ model::Similarity initialize_without_landmarks(const model::RiggedModel& model, 
       FitSummary s;
       problem.evaluator().set_params(params);
       problem.orient_scan_normals(quick.correspondences.max_distance_start_mm);
-      if (!solve_stages(problem, {rigid}, params, s)) continue;
+      if (minimize_stages(problem, {rigid}, params, s) == Termination::NumericalFailure) continue;
       problem.evaluator().set_params(params);
       problem.update_correspondences(quick.correspondences.max_distance_end_mm, 4, false);
       const auto& st = problem.stats();

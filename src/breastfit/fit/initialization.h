@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "breastfit/fit/fit_options.h"
-#include "breastfit/fit/landmark_term.h"
+#include "breastfit/fit/landmark_target.h"
 #include "breastfit/fit/scan_target.h"
 #include "breastfit/model/pose_params.h"
 #include "breastfit/model/rigged_model.h"

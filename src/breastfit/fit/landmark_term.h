@@ -1,37 +1,17 @@
 #pragma once
-/// \file The landmark term (paper eq. 9): squared distances between model landmarks and the
-/// landmarks placed on the scan.
-#include <optional>
-#include <string>
-#include <vector>
-
-#include "breastfit/fit/normal_equations.h"
-#include "breastfit/model/pose_evaluator.h"
+/// \file The landmark term (paper eq. 9) for material landmarks: squared distances between the
+/// model's landmark points and the landmarks placed on the scan,
+///   E_L = 1/λL · Σ_l w_l ‖L_l(θ) − ℓ_l‖²
+/// (w_l: landmark_weight). The lowest breast points are not material points: sliding_landmark_term.h.
+#include "breastfit/fit/energy_term.h"
 
 namespace breastfit::fit {
 
-/// One input landmark matched to a model landmark.
-struct LandmarkTarget {
-  std::string name;
-  int model_landmark = 0;        ///< index into RiggedModel::landmarks
-  Vec3 position = Vec3::Zero();  ///< on the scan, mm
-  double weight = 1.0;           ///< relative weight (see landmark_weight)
-  /// For a non-material landmark (sliding_landmarks.h): the model point chosen at the current
-  /// pose, used instead of the model landmark's fixed surface point.
-  std::optional<SurfacePoint> sliding_point;
+class LandmarkTerm final : public EnergyTerm {
+ public:
+  double evaluate(const TermContext& ctx, double weight, NormalEquations* eq) const override;
 };
 
-/// Relative weight of a landmark in the fit: 1 for material points (nipples, sternal notch,
-/// xiphoid, acromia, pectoral insertions) and for the lowest breast points (matched by their
-/// sliding definition); 0.1 for the mid-axillary points: they are defined by a line, not a
-/// point, and lie on skin that slides with the arm (supine, arms raised, they sit 8–12 mm from
-/// where the template's thorax-bound point goes). Measured on the bench (14 cases, referee):
-/// weight 0.5 → 0.1 took the true-surface error from 2.78 to 2.56 mm and the landmark error
-/// from 4.29 to 4.95 mm. (Leaving their vertical offset free instead did not help: 2.82 mm.)
-double landmark_weight(const std::string& name);
-
-/// scale · Σ_l weight_l ‖L_l(θ) − ℓ_l‖²; with `eq`, also its normal equations. Returns the cost.
-double add_landmark_term(const model::PoseEvaluator& ev, const std::vector<LandmarkTarget>& targets, double scale,
-                         NormalEquations* eq);
+TermSpec landmark_term_spec();
 
 }  // namespace breastfit::fit

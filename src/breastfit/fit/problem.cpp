@@ -1,19 +1,27 @@
 #include "breastfit/fit/problem.h"
 
-#include <algorithm>
 #include <cmath>
 #include <limits>
 
-#include "breastfit/fit/priors.h"
-#include "breastfit/fit/sliding_landmarks.h"
-#include "breastfit/fit/surface_term.h"
+#include "breastfit/core/errors.h"
+#include "breastfit/fit/energy_terms.h"
 #include "breastfit/mesh/normals.h"
 
 namespace breastfit::fit {
 
 Problem::Problem(const model::RiggedModel& model, ScanTarget& scan, const FitOptions& options,
-                 const std::vector<LandmarkTarget>& landmarks)
-    : model_(model), scan_(scan), options_(options), landmarks_(landmarks), ev_(model) {}
+                 std::vector<LandmarkTarget> landmarks)
+    : model_(model), scan_(scan), options_(options), landmarks_(std::move(landmarks)), ev_(model) {
+  for (const auto& spec : energy_terms()) {
+    const double lambda = options.weights.lambda(spec.name);
+    if (spec.can_disable && lambda <= 0) continue;
+    terms_.push_back({std::string(spec.name), 1.0 / lambda, spec.make()});
+  }
+}
+
+Problem::~Problem() = default;
+
+TermContext Problem::context() const { return {ev_, pairs_, reverse_pairs_, landmarks_, options_}; }
 
 void Problem::update_correspondences(double max_dist, int stride, bool with_reverse) {
   const Points N = mesh::vertex_normals(ev_.vertices(), model_.rest.F);
@@ -26,13 +34,6 @@ void Problem::update_correspondences(double max_dist, int stride, bool with_reve
                                                   max_dist, &reverse_stats_, &reverse_hints_);
 }
 
-void Problem::update_sliding_landmarks() {
-  const Vec3 up = posed_vertical_axis(model_, ev_.params());
-  for (auto& t : landmarks_)
-    if (const auto region = sliding_landmark_region(t.name))
-      t.sliding_point = lowest_region_point(model_, ev_.vertices(), up, *region);
-}
-
 void Problem::clear_correspondences() {
   pairs_.clear();
   reverse_pairs_.clear();
@@ -40,26 +41,33 @@ void Problem::clear_correspondences() {
   reverse_stats_ = CorrespondenceStats{};
 }
 
+void Problem::update_terms() {
+  const TermContext ctx = context();
+  for (auto& t : terms_) t.term->update(ctx);
+}
+
 EnergyBreakdown Problem::evaluate(NormalEquations* eq) const {
-  const auto& w = options_.weights;
+  const TermContext ctx = context();
   EnergyBreakdown e;
-  const double data_scale = 1.0 / (w.lambda_data * std::max<size_t>(1, pairs_.size()));
-  e.data = add_data_term(ev_, pairs_, options_.correspondences.point_to_point_weight, data_scale, eq);
-  if (!reverse_pairs_.empty())
-    e.reverse = add_reverse_term(ev_, reverse_pairs_, 1.0 / (w.lambda_reverse * reverse_pairs_.size()), eq);
-  e.landmarks = add_landmark_term(ev_, landmarks_, 1.0 / w.lambda_landmarks, eq);
-  PriorScales ps;
-  ps.scale = 1.0 / w.lambda_scale;
-  ps.blendshape = 1.0 / w.lambda_blendshapes;
-  ps.joint = 1.0 / w.lambda_joints;
-  ps.continuity = 1.0 / w.lambda_continuity;
-  ps.joint_translation_scale_mm = w.joint_translation_scale_mm;
-  const PriorCosts pc = add_priors(ev_, ps, eq);
-  e.scale = pc.scale;
-  e.blendshapes = pc.blendshape;
-  e.joints = pc.joint;
-  e.continuity = pc.continuity;
+  e.terms.reserve(energy_terms().size());
+  size_t next = 0;
+  for (const auto& spec : energy_terms()) {  // disabled terms are listed with 0
+    if (next < terms_.size() && terms_[next].name == spec.name) {
+      e.terms.emplace_back(terms_[next].name, terms_[next].term->evaluate(ctx, terms_[next].weight, eq));
+      ++next;
+    } else {
+      e.terms.emplace_back(std::string(spec.name), 0.0);
+    }
+  }
   return e;
+}
+
+double Problem::evaluate_term(std::string_view name, NormalEquations* eq) const {
+  for (const auto& t : terms_)
+    if (t.name == name) return t.term->evaluate(context(), t.weight, eq);
+  if (!find_energy_term(name))
+    throw InvalidInput("'" + std::string(name) + "' is not an energy term (expected one of: " + energy_term_names() + ")");
+  return 0.0;  // disabled
 }
 
 void Problem::orient_scan_normals(double max_dist) {

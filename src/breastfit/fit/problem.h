@@ -1,12 +1,15 @@
 #pragma once
-/// \file The registration energy at fixed correspondences: the terms of fit_options.h evaluated
-/// at the evaluator's current parameters, with their Gauss–Newton normal equations.
+/// \file The registration energy at fixed correspondences: the terms of energy_terms.h evaluated
+/// at the evaluator's current parameters, with their Gauss–Newton normal equations. The problem
+/// owns what the terms read (correspondences, landmarks) and re-chooses it per outer iteration.
+#include <memory>
 #include <vector>
 
 #include "breastfit/fit/correspondences.h"
+#include "breastfit/fit/energy_term.h"
 #include "breastfit/fit/fit_options.h"
 #include "breastfit/fit/fit_summary.h"
-#include "breastfit/fit/landmark_term.h"
+#include "breastfit/fit/landmark_target.h"
 #include "breastfit/fit/normal_equations.h"
 #include "breastfit/fit/scan_target.h"
 #include "breastfit/model/pose_evaluator.h"
@@ -15,23 +18,26 @@ namespace breastfit::fit {
 
 class Problem {
  public:
-  /// Keeps references: all arguments must outlive the problem.
+  /// Keeps references to model, scan and options: they must outlive the problem.
   Problem(const model::RiggedModel& model, ScanTarget& scan, const FitOptions& options,
-          const std::vector<LandmarkTarget>& landmarks);
+          std::vector<LandmarkTarget> landmarks);
+  ~Problem();
 
   model::PoseEvaluator& evaluator() { return ev_; }
   const model::PoseEvaluator& evaluator() const { return ev_; }
   const FitOptions& options() const { return options_; }
   ScanTarget& scan() { return scan_; }
 
-  /// Re-chooses the model points of sliding landmarks (lowest breast points) at the current pose.
-  void update_sliding_landmarks();
   /// Recomputes correspondences at the evaluator's current pose (every `stride`-th vertex).
   void update_correspondences(double max_distance_mm, int stride, bool with_reverse);
   /// Drops all correspondences (stages that use landmarks and priors only).
   void clear_correspondences();
+  /// Lets every term re-choose what it holds fixed (EnergyTerm::update) at the current pose.
+  void update_terms();
   /// Energy at the evaluator's current parameters; with `eq`, accumulates its normal equations.
   EnergyBreakdown evaluate(NormalEquations* eq) const;
+  /// The energy of one term (1/λ included) at the current parameters; with `eq`, its rows only.
+  double evaluate_term(std::string_view name, NormalEquations* eq) const;
 
   /// Flips the scan's normal sign when most of them disagree with the posed template's normals.
   void orient_scan_normals(double max_distance_mm);
@@ -43,10 +49,18 @@ class Problem {
   double kept_mae_mm() const;
 
  private:
+  struct ActiveTerm {
+    std::string name;
+    double weight;  // 1/λ
+    std::unique_ptr<EnergyTerm> term;
+  };
+  TermContext context() const;
+
   const model::RiggedModel& model_;
   ScanTarget& scan_;
   const FitOptions& options_;
-  std::vector<LandmarkTarget> landmarks_;  // a copy: sliding landmarks are re-chosen per iteration
+  std::vector<LandmarkTarget> landmarks_;
+  std::vector<ActiveTerm> terms_;  // the enabled terms, in the table's order
   model::PoseEvaluator ev_;
   std::vector<Correspondence> pairs_;
   std::vector<ReverseCorrespondence> reverse_pairs_;

@@ -7,7 +7,7 @@
 #include "breastfit/core/errors.h"
 #include "breastfit/core/timer.h"
 #include "breastfit/fit/initialization.h"
-#include "breastfit/fit/lm_solver.h"
+#include "breastfit/fit/stage_minimizer.h"
 #include "breastfit/fit/problem.h"
 #include "breastfit/mesh/landmark_names.h"
 
@@ -42,10 +42,46 @@ std::vector<LandmarkTarget> match_landmarks(const model::RiggedModel& model,
   return out;
 }
 
+namespace {
+
+// The verdict on the final state: enough of the template on the scan, close enough.
+Verdict judge(const FitOptions& options, const Problem& problem, Termination termination, double kept_mae_mm) {
+  if (termination == Termination::NumericalFailure) return {false, "numerical failure: the energy became non-finite"};
+  if (termination == Termination::Aborted) return {false, "aborted before the end of the registration"};
+  const auto& st = problem.stats();
+  const double kept_fraction = st.candidates > 0 ? static_cast<double>(st.kept) / st.candidates : 0.0;
+  if (kept_fraction < options.min_kept_fraction)
+    return {false, "not usable: only " + fmt(100 * kept_fraction, 0) + "% of the template lies within " +
+                       fmt(options.correspondences.max_distance_end_mm) +
+                       " mm of the scan (is this an upper-torso scan? are the landmarks right?)"};
+  if (kept_mae_mm > options.max_surface_mae_mm)
+    return {false, "not usable: mean template-to-scan distance " + fmt(kept_mae_mm, 2) + " mm exceeds " +
+                       fmt(options.max_surface_mae_mm) + " mm"};
+  return {true, "usable: " + fmt(100 * kept_fraction, 0) + "% of the template within " +
+                    fmt(options.correspondences.max_distance_end_mm) + " mm of the scan, mean distance " +
+                    fmt(kept_mae_mm, 2) + " mm"};
+}
+
+std::string termination_message(const FitSummary& s) {
+  const std::string stage = s.stages.empty() ? std::string("-") : s.stages.back().name;
+  const int n = static_cast<int>(s.iterations.size());
+  switch (s.termination) {
+    case Termination::IterationCap:
+      return "iteration cap: stage '" + stage + "' ran all its iterations (" + std::to_string(n) + " in all)";
+    case Termination::Aborted: return "aborted by the caller after " + std::to_string(n) + " iterations";
+    case Termination::NumericalFailure: return "numerical failure in stage '" + stage + "'";
+    default:
+      return std::string("converged (") + to_string(s.termination) + ") in stage '" + stage + "' after " +
+             std::to_string(n) + " iterations";
+  }
+}
+
+}  // namespace
+
 FitResult register_template(const model::RiggedModel& model, ScanTarget& scan, std::vector<LandmarkTarget> landmarks,
                             const FitOptions& options, const IterationCallback& on_iteration) {
   options.validate();
-  Timer timer;
+  Timer timer, phase;
   FitResult result;
   FitSummary& summary = result.summary;
 
@@ -78,50 +114,41 @@ FitResult register_template(const model::RiggedModel& model, ScanTarget& scan, s
   problem.evaluator().set_params(params);
   problem.orient_scan_normals(options.correspondences.max_distance_start_mm);
   initialize_arms(model, scan, params);
+  summary.timings.push_back({"initialization", phase.seconds()});
 
   std::vector<StageOptions> stages;
   if (landmarks.size() >= 3) stages.push_back(options.landmark_pose);
   for (const auto& s : {options.rigid, options.pose, options.shape, options.refine}) stages.push_back(s);
-  const bool ok = solve_stages(problem, stages, params, summary, on_iteration);
+  summary.termination = minimize_stages(problem, stages, params, summary, on_iteration);
 
   // Final state: every vertex at the final threshold.
-  const bool use_reverse = options.weights.lambda_reverse > 0 && options.correspondences.reverse_samples > 0;
+  phase.reset();
+  const bool use_reverse = options.weights.lambda("reverse") > 0 && options.correspondences.reverse_samples > 0;
   problem.evaluator().set_params(params);
   problem.update_correspondences(options.correspondences.max_distance_end_mm, 1, use_reverse);
+  problem.update_terms();
   summary.final_energy = problem.evaluate(nullptr);
   summary.final_correspondences = problem.stats();
   summary.final_reverse_correspondences = problem.reverse_stats();
   summary.kept_mae_mm = problem.kept_mae_mm();
-
-  const auto& st = problem.stats();
-  const double kept_fraction = st.candidates > 0 ? static_cast<double>(st.kept) / st.candidates : 0.0;
-  const Termination last = summary.stages.empty() ? Termination::MaxIterations : summary.stages.back().termination;
-  if (!ok || !std::isfinite(summary.final_energy.total())) {
+  if (summary.termination != Termination::Aborted && !std::isfinite(summary.final_energy.total()))
     summary.termination = Termination::NumericalFailure;
-    summary.message = "numerical failure: the energy became non-finite";
-  } else if (kept_fraction < options.min_kept_fraction) {
-    summary.termination = Termination::NotUsable;
-    summary.message = "not converged: only " + fmt(100 * kept_fraction, 0) + "% of the template lies within " +
-                      fmt(options.correspondences.max_distance_end_mm) +
-                      " mm of the scan (is this an upper-torso scan? are the landmarks right?)";
-  } else if (summary.kept_mae_mm > options.max_surface_mae_mm) {
-    summary.termination = Termination::NotUsable;
-    summary.message = "not converged: mean template-to-scan distance " + fmt(summary.kept_mae_mm, 2) +
-                      " mm exceeds " + fmt(options.max_surface_mae_mm) + " mm";
-  } else {
-    summary.termination = last;
-    summary.message = std::string(to_string(last)) + " after " + std::to_string(summary.iterations.size()) +
-                      " iterations";
-  }
+  summary.termination_message = termination_message(summary);
+  summary.verdict = judge(options, problem, summary.termination, summary.kept_mae_mm);
+  summary.message = summary.usable() ? summary.termination_message : summary.verdict.reason;
+  summary.timings.push_back({"final_state", phase.seconds()});
+
   result.params = params;
   result.vertices = problem.evaluator().vertices();
   result.model_vertices = result.vertices;
   if (options.detail.enabled && summary.usable()) {
+    phase.reset();
     const SurfaceDetail d =
         fit_surface_detail(result.vertices, model.rest.F, scan, options.correspondences, options.detail);
     result.vertices = d.vertices;
     result.detail_offsets = d.offsets;
     summary.detail = {true, d.kept, d.mean_abs_mm, d.max_abs_mm};
+    summary.timings.push_back({"surface_detail", phase.seconds()});
   }
   result.landmarks = landmarks;
   summary.seconds = timer.seconds();

@@ -1,5 +1,5 @@
 #pragma once
-/// \file The registration (paper §2.8, docs/DESIGN.md §4): coarse-to-fine Levenberg–Marquardt
+/// \file The registration (paper §2.8, docs/REGISTRATION.md): coarse-to-fine Levenberg–Marquardt
 /// over the template's parameters with closest-point correspondences recomputed every iteration.
 ///
 /// Example:
@@ -15,7 +15,7 @@
 
 #include "breastfit/fit/fit_options.h"
 #include "breastfit/fit/fit_summary.h"
-#include "breastfit/fit/landmark_term.h"
+#include "breastfit/fit/landmark_target.h"
 #include "breastfit/fit/scan_target.h"
 #include "breastfit/fit/surface_detail.h"
 #include "breastfit/model/pose_params.h"
@@ -40,7 +40,8 @@ std::vector<LandmarkTarget> match_landmarks(const model::RiggedModel& model,
 
 /// Registers `model` to `scan`. Landmarks may be empty (landmark-free initialisation).
 /// Orients the scan's normals (ScanTarget::set_normal_sign) to agree with the template's.
-/// Non-convergence is reported in the summary (termination NotUsable + message), not thrown.
+/// How the solver ended is summary.termination; whether the result is usable is summary.verdict
+/// (an unusable fit is reported there, not thrown). `on_iteration` may abort the run.
 /// \throws InvalidInput for invalid options.
 FitResult register_template(const model::RiggedModel& model, ScanTarget& scan,
                             std::vector<LandmarkTarget> landmarks, const FitOptions& options,

@@ -7,9 +7,10 @@
 #include <vector>
 
 #include "breastfit/core/types.h"
-#include "breastfit/fit/landmark_term.h"
+#include "breastfit/fit/landmark_target.h"
 #include "breastfit/fit/scan_target.h"
 #include "breastfit/metrics/distance_stats.h"
+#include "breastfit/model/pose_params.h"
 #include "breastfit/model/rigged_model.h"
 
 namespace breastfit::metrics {

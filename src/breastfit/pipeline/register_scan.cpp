@@ -7,7 +7,9 @@
 
 #include "breastfit/core/errors.h"
 #include "breastfit/core/timer.h"
+#include "breastfit/fit/fit_summary_json.h"
 #include "breastfit/fit/scan_target.h"
+#include "breastfit/model/template_library.h"
 #include "breastfit/fit/sliding_landmarks.h"
 #include "breastfit/mesh/landmark_names.h"
 #include "breastfit/mesh/units.h"
@@ -31,17 +33,20 @@ std::string fmt(double v) {
 }  // namespace
 
 RegisterResult register_scan(const RegisterRequest& req, const fit::IterationCallback& on_iteration) {
-  if (!req.scan || !req.model) throw InvalidInput("register_scan: scan and model are required");
+  const std::shared_ptr<const model::RiggedModel> model_ptr =
+      req.model ? req.model : std::make_shared<const model::RiggedModel>(model::load_default_template());
+  const model::RiggedModel& model = *model_ptr;
   RegisterResult out;
   out.scan_name = req.scan_name;
-  out.scan = prepare_scan(*req.scan, req.scan_name, req.units);
+  Timer phase;
+  out.scan = prepare_scan(req.scan, req.scan_name, req.units);
   out.warnings = out.scan.warnings;
   fit::FitOptions options = req.options;
   if (out.scan.was_point_cloud) options.correspondences.reject_boundary = false;
 
   std::vector<std::pair<std::string, Vec3>> landmarks_mm;
   if (req.landmarks) landmarks_mm = prepare_landmarks(*req.landmarks, out.scan.units);
-  std::vector<fit::LandmarkTarget> targets = fit::match_landmarks(*req.model, landmarks_mm);
+  std::vector<fit::LandmarkTarget> targets = fit::match_landmarks(model, landmarks_mm);
   if (req.landmarks && targets.size() < kLandmarkNames.size()) {
     std::string missing;
     for (auto name : kLandmarkNames)
@@ -49,10 +54,14 @@ RegisterResult register_scan(const RegisterRequest& req, const fit::IterationCal
     out.warnings.push_back("landmarks missing (the fit uses those present): " + missing);
   }
 
+  out.timings.push_back({"scan_preparation", phase.seconds()});
   Timer timer;  // from scan and landmarks in memory to fitted parameters
   fit::ScanTarget scan(out.scan.mesh_mm, options.correspondences.reverse_samples);
-  out.fit = fit::register_template(*req.model, scan, targets, options, on_iteration);
+  out.timings.push_back({"index_build", timer.seconds()});
+  out.fit = fit::register_template(model, scan, targets, options, on_iteration);
   out.time_s = timer.seconds();
+  for (const auto& p : out.fit.summary.timings) out.timings.push_back(p);
+  phase.reset();
 
   for (const auto& w : out.fit.summary.warnings) out.warnings.push_back(w);
   for (const auto& t : out.fit.landmarks) {
@@ -61,22 +70,25 @@ RegisterResult register_scan(const RegisterRequest& req, const fit::IterationCal
       out.warnings.push_back("landmark '" + t.name + "' is " + fmt(d) + " mm away from the scan surface");
   }
   out.fitted_mm.V = out.fit.vertices;
-  out.fitted_mm.F = req.model->rest.F;
-  out.model_landmarks_mm = evaluate_landmarks(*req.model, out.fit.vertices, out.fit.params);
+  out.fitted_mm.F = model.rest.F;
+  out.model_landmarks_mm = evaluate_landmarks(model, out.fit.vertices, out.fit.params);
   transfer::TransferOptions transfer_options;
   transfer_options.reject_scan_border = !out.scan.was_point_cloud;
-  out.drawings_on_scan = transfer::transfer_drawings(*req.model, out.fit.vertices, scan, transfer_options);
+  out.drawings_on_scan = transfer::transfer_drawings(model, out.fit.vertices, scan, transfer_options);
   out.drawings_mm = transfer::to_markups(out.drawings_on_scan);
   for (const auto& c : out.drawings_on_scan)
     if (c.supported_fraction < 0.5)
       out.warnings.push_back("drawing '" + c.name + "': only " + fmt(100 * c.supported_fraction) + " % of it is on the scan");
-  out.breasts = transfer::measure_breasts(*req.model, out.fit.vertices);
+  out.timings.push_back({"transfer", phase.seconds()});
+  phase.reset();
+  out.breasts = transfer::measure_breasts(model, out.fit.vertices);
   out.surface = metrics::distance_stats(metrics::surface_distances(out.fit.vertices, scan, !out.scan.was_point_cloud));
   out.surface_model_only =
       out.fit.detail_offsets.size() > 0
           ? metrics::distance_stats(metrics::surface_distances(out.fit.model_vertices, scan, !out.scan.was_point_cloud))
           : out.surface;
-  out.landmarks = metrics::landmark_errors(*req.model, out.fit.vertices, out.fit.params, out.fit.landmarks);
+  out.landmarks = metrics::landmark_errors(model, out.fit.vertices, out.fit.params, out.fit.landmarks);
+  out.timings.push_back({"measurements", phase.seconds()});
   return out;
 }
 
@@ -86,12 +98,15 @@ nlohmann::json RegisterResult::report() const {
   for (size_t i = 0; i < landmarks.names.size(); ++i) per_landmark[landmarks.names[i]] = landmarks.distances_mm[i];
   nlohmann::json j;
   j["time_s"] = time_s;
-  j["status"] = usable() ? "ok" : "not_converged";
+  j["status"] = usable() ? "ok" : "not_usable";
   j["units"] = std::string(mesh::units_name(scan.units));
   j["point_cloud"] = scan.was_point_cloud;
   j["iterations"] = s.iterations.size();
   j["stopping_reason"] = s.message;
   j["termination"] = fit::to_string(s.termination);
+  j["converged"] = s.converged();
+  j["verdict"] = s.verdict.reason;
+  j["timings_s"] = fit::timings_json(timings);
   j["solver"] = fit::to_json(s);
   j["table1"] = {{"surface_mm", metrics::to_json(surface)},
                  {"surface_model_only_mm", metrics::to_json(surface_model_only)},

@@ -2,6 +2,7 @@
 /// \file The whole registration of one scan in memory: prepare the scan and landmarks, build the
 /// index, fit, and evaluate the fitted template's landmarks and drawings and the paper's errors.
 /// What `breastfit register`, `bench` and `demo` run.
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -19,12 +20,15 @@
 
 namespace breastfit::pipeline {
 
+/// Everything one registration needs, owned by the request (nothing dangles when it is kept or
+/// moved to another thread): the scan and landmarks as read, the template (shared: one loaded
+/// template serves many registrations), the options.
 struct RegisterRequest {
-  const TriangleMesh* scan = nullptr;          ///< as read: file units, scanner frame
+  TriangleMesh scan;                           ///< as read: file units, scanner frame
   std::string scan_name = "scan";              ///< for messages
   std::optional<mesh::Units> units;            ///< forced units (nullopt: detect)
   std::optional<LandmarkSet> landmarks;        ///< as read (nullopt: none given)
-  const model::RiggedModel* model = nullptr;   ///< the template
+  std::shared_ptr<const model::RiggedModel> model;  ///< the template (nullptr: the shipped default)
   fit::FitOptions options;
 };
 
@@ -42,13 +46,18 @@ struct RegisterResult {
   metrics::LandmarkErrors landmarks;    ///< model landmarks vs input landmarks
   std::vector<std::string> warnings;    ///< everything the user should know
   double time_s = 0;                    ///< scan + landmarks in memory → fitted parameters (index build included)
+  /// Wall time per phase: scan_preparation, index_build, the fit's (initialization, stage:<name>,
+  /// final_state, surface_detail), transfer, measurements.
+  std::vector<fit::PhaseTime> timings;
 
   bool usable() const { return fit.summary.usable(); }
   /// report.json content.
   nlohmann::json report() const;
 };
 
-/// Runs the registration. \throws InvalidInput for bad scans, landmarks or options.
+/// Runs the registration. `on_iteration` sees every solver iteration and may abort (the result is
+/// then not usable, fit.summary.termination Aborted). \throws InvalidInput for bad scans,
+/// landmarks or options; IoError when the default template cannot be read.
 RegisterResult register_scan(const RegisterRequest& request, const fit::IterationCallback& on_iteration = {});
 
 }  // namespace breastfit::pipeline

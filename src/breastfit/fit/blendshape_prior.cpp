@@ -1,0 +1,24 @@
+#include "breastfit/fit/blendshape_prior.h"
+
+namespace breastfit::fit {
+
+double BlendshapePrior::evaluate(const TermContext& ctx, double weight, NormalEquations* eq) const {
+  const auto& alpha = ctx.ev.params().alpha;
+  double cost = 0.0;
+  for (int k = 0; k < ctx.ev.model().num_blendshapes(); ++k) {
+    const double a = alpha[k];
+    cost += weight * a * a;
+    if (!eq) continue;
+    const int idx = ctx.ev.layout().blendshape_offset(k);
+    const double one = 1.0;
+    eq->add_row(&idx, &one, 1, a, weight);
+  }
+  return cost;
+}
+
+TermSpec blendshape_prior_spec() {
+  return {"blendshapes", "λBS", 10.0, "1", "blendshape regulariser E_BS", false,
+          [] { return std::unique_ptr<EnergyTerm>(new BlendshapePrior); }};
+}
+
+}  // namespace breastfit::fit

@@ -1,0 +1,37 @@
+#include "breastfit/fit/reverse_term.h"
+
+namespace breastfit::fit {
+
+double ReverseTerm::evaluate(const TermContext& ctx, double weight, NormalEquations* eq) const {
+  if (ctx.reverse.empty()) return 0.0;
+  const double scale = weight / static_cast<double>(ctx.reverse.size());
+  const Triangles& F = ctx.ev.model().rest.F;
+  double cost = 0.0;
+  model::PointJacobian jac;
+  std::vector<double> vals;
+  for (const auto& c : ctx.reverse) {
+    const Vec3 d = ctx.ev.surface_point(c.model_point) - c.source;
+    const double w = scale * c.weight;
+    const double r = c.normal.dot(d);
+    cost += w * r * r;
+    if (!eq) continue;
+    // The row is Σ_corners bary_c · nᵀ ∂M_c/∂θ: assembled corner by corner (no merging).
+    eq->begin_row(r, w);
+    for (int corner = 0; corner < 3; ++corner) {
+      ctx.ev.vertex_jacobian(F(c.model_point.face, corner), jac);
+      const int nnz = static_cast<int>(jac.params.size());
+      vals.resize(nnz);
+      for (int k = 0; k < nnz; ++k) vals[k] = c.normal.dot(jac.columns[k]);
+      eq->add_to_row(jac.params.data(), vals.data(), nnz, c.model_point.bary[corner]);
+    }
+    eq->end_row();
+  }
+  return cost;
+}
+
+TermSpec reverse_term_spec() {
+  return {"reverse", "λR", 2.0, "mm²", "reverse data term: scan → model, mean squared point-to-plane distance",
+          true, [] { return std::unique_ptr<EnergyTerm>(new ReverseTerm); }};
+}
+
+}  // namespace breastfit::fit

@@ -1,0 +1,27 @@
+#include "breastfit/fit/scale_prior.h"
+
+namespace breastfit::fit {
+
+double ScalePrior::evaluate(const TermContext& ctx, double weight, NormalEquations* eq) const {
+  const auto& model = ctx.ev.model();
+  const auto& p = ctx.ev.params();
+  double cost = 0.0;
+  for (int j = 0; j < model.num_bones(); ++j)
+    for (int a = 0; a < 3; ++a) {
+      const double r = p.bones[j].scale[a] - 1.0;
+      const double w = weight * model.bones[j].scale_stiffness[a];
+      cost += w * r * r;
+      if (!eq) continue;
+      const int idx = ctx.ev.layout().bone_offset(j) + 6 + a;
+      const double one = 1.0;
+      eq->add_row(&idx, &one, 1, r, w);
+    }
+  return cost;
+}
+
+TermSpec scale_prior_spec() {
+  return {"scale", "λS", 0.5, "1", "bone scale regulariser E_S", false,
+          [] { return std::unique_ptr<EnergyTerm>(new ScalePrior); }};
+}
+
+}  // namespace breastfit::fit

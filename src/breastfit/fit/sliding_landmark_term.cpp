@@ -1,0 +1,42 @@
+#include "breastfit/fit/sliding_landmark_term.h"
+
+#include "breastfit/fit/row_builder.h"
+#include "breastfit/fit/sliding_landmarks.h"
+
+namespace breastfit::fit {
+
+void SlidingLandmarkTerm::update(const TermContext& ctx) {
+  const auto& model = ctx.ev.model();
+  const Vec3 up = posed_vertical_axis(model, ctx.ev.params());
+  points_.assign(ctx.landmarks.size(), std::nullopt);
+  for (size_t i = 0; i < ctx.landmarks.size(); ++i)
+    if (const auto region = sliding_landmark_region(ctx.landmarks[i].name))
+      points_[i] = lowest_region_point(model, ctx.ev.vertices(), up, *region);
+}
+
+double SlidingLandmarkTerm::evaluate(const TermContext& ctx, double weight, NormalEquations* eq) const {
+  double cost = 0.0;
+  model::PointJacobian jac;
+  std::vector<double> vals;
+  for (size_t i = 0; i < ctx.landmarks.size(); ++i) {
+    const auto& t = ctx.landmarks[i];
+    if (!sliding_landmark_region(t.name)) continue;  // the landmark term's
+    // Before the first update (or on a model without the region): the stored landmark point.
+    const SurfacePoint& sp = i < points_.size() && points_[i] ? *points_[i] : ctx.ev.model().landmarks[t.model_landmark].point;
+    const Vec3 d = ctx.ev.surface_point(sp) - t.position;
+    const double w = weight * t.weight;
+    cost += w * d.squaredNorm();
+    if (!eq) continue;
+    ctx.ev.surface_point_jacobian(sp, jac);
+    add_point_rows(jac, d, w, *eq, vals);
+  }
+  return cost;
+}
+
+TermSpec sliding_landmark_term_spec() {
+  return {"sliding_landmarks", "λLS", 50.0, "mm²",
+          "sliding landmark term: squared distance per lowest breast point (re-chosen every iteration)", false,
+          [] { return std::unique_ptr<EnergyTerm>(new SlidingLandmarkTerm); }};
+}
+
+}  // namespace breastfit::fit

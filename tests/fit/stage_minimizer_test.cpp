@@ -1,0 +1,106 @@
+#include "breastfit/fit/stage_minimizer.h"
+
+#include <gtest/gtest.h>
+
+#include "breastfit/fit/registration.h"
+#include "breastfit/model/pose_evaluator.h"
+#include "support/toy_model.h"
+
+namespace breastfit::fit {
+namespace {
+
+struct ToyCase {
+  model::RiggedModel m = test::make_toy_model();
+  model::PoseParams truth = test::random_toy_pose(m, 21, 0.5);
+  TriangleMesh mesh = [&] {
+    TriangleMesh t;
+    t.V = model::pose_vertices(m, truth);
+    t.F = m.rest.F;
+    return t;
+  }();
+  std::vector<LandmarkTarget> landmarks() const {
+    std::vector<std::pair<std::string, Vec3>> named;
+    for (const auto& lm : m.landmarks) named.emplace_back(lm.name, lm.point.position(mesh.V, m.rest.F));
+    return match_landmarks(m, named);
+  }
+};
+
+TEST(StageMinimizer, AStageWithRoomToSpareEndsByConvergenceNotByItsCap) {
+  ToyCase c;
+  ScanTarget scan(c.mesh, 300);
+  FitOptions o;
+  Problem problem(c.m, scan, o, c.landmarks());
+  model::PoseParams p = model::PoseParams::identity(c.m);
+  p.global.translation = Vec3(3, -2, 4);
+  StageOptions stage{"rigid", true, false, false, 200, 1};
+  FitSummary s;
+  const Termination t = minimize_stages(problem, {stage}, p, s);
+  EXPECT_TRUE(is_convergence(t)) << to_string(t);
+  ASSERT_EQ(s.stages.size(), 1u);
+  EXPECT_LT(s.stages[0].iterations, 200);
+  EXPECT_LT(s.stages[0].final_energy, s.stages[0].initial_energy);
+  ASSERT_EQ(s.timings.size(), 1u);
+  EXPECT_EQ(s.timings[0].phase, "stage:rigid");
+}
+
+TEST(StageMinimizer, AcceptedStepsNeverRaiseTheEnergyAtFixedCorrespondences) {
+  ToyCase c;
+  ScanTarget scan(c.mesh, 300);
+  FitOptions o;
+  Problem problem(c.m, scan, o, c.landmarks());
+  model::PoseParams p = model::PoseParams::identity(c.m);
+  FitSummary s;
+  minimize_stages(problem, {o.landmark_pose, o.rigid, o.pose, o.shape}, p, s);
+  ASSERT_FALSE(s.iterations.empty());
+  for (const auto& r : s.iterations) {
+    EXPECT_LE(r.energy_after, r.energy_before) << r.stage << " " << r.iteration;
+    if (r.accepted) {
+      EXPECT_GT(r.predicted_decrease, 0) << r.stage << " " << r.iteration;
+      EXPECT_GE(r.gain_ratio, o.solver.min_gain_ratio);
+    }
+  }
+}
+
+TEST(StageMinimizer, TheCallbackCanAbortAndTheResultIsThenNotUsable) {
+  ToyCase c;
+  ScanTarget scan(c.mesh, 300);
+  int calls = 0;
+  const FitResult r = register_template(c.m, scan, c.landmarks(), FitOptions{}, [&](const IterationRecord&) {
+    return ++calls == 3 ? CallbackResult::Abort : CallbackResult::Continue;
+  });
+  EXPECT_EQ(calls, 3);
+  EXPECT_EQ(r.summary.iterations.size(), 3u);
+  EXPECT_EQ(r.summary.termination, Termination::Aborted);
+  EXPECT_FALSE(r.summary.usable());
+  EXPECT_NE(r.summary.message.find("aborted"), std::string::npos) << r.summary.message;
+  EXPECT_FALSE(r.summary.detail.applied);
+}
+
+TEST(StageMinimizer, RecordsTheFitPhasesInOrder) {
+  ToyCase c;
+  ScanTarget scan(c.mesh, 300);
+  const FitResult r = register_template(c.m, scan, c.landmarks(), FitOptions{});
+  ASSERT_TRUE(r.summary.usable()) << r.summary.message;
+  std::vector<std::string> phases;
+  double sum = 0;
+  for (const auto& p : r.summary.timings) {
+    phases.push_back(p.phase);
+    EXPECT_GE(p.seconds, 0.0);
+    sum += p.seconds;
+  }
+  EXPECT_EQ(phases, (std::vector<std::string>{"initialization", "stage:landmark_pose", "stage:rigid", "stage:pose",
+                                              "stage:shape", "stage:refine", "final_state", "surface_detail"}));
+  EXPECT_LE(sum, r.summary.seconds * 1.0001 + 1e-6);
+}
+
+TEST(StageMinimizer, IsDeterministic) {
+  ToyCase c;
+  ScanTarget a(c.mesh, 300), b(c.mesh, 300);
+  const FitResult ra = register_template(c.m, a, c.landmarks(), FitOptions{});
+  const FitResult rb = register_template(c.m, b, c.landmarks(), FitOptions{});
+  EXPECT_EQ(ra.vertices, rb.vertices);
+  EXPECT_EQ(ra.summary.iterations.size(), rb.summary.iterations.size());
+}
+
+}  // namespace
+}  // namespace breastfit::fit
