@@ -6,8 +6,6 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json_fwd.hpp>
-
 #include "breastfit/fit/fit_options.h"
 #include "breastfit/fit/registration.h"
 #include "breastfit/mesh/landmarks.h"
@@ -44,8 +42,6 @@ struct RegisterResult {
   double time_s = 0;                    ///< scan + landmarks in memory → fitted parameters (index build included)
 
   bool usable() const { return fit.summary.usable(); }
-  /// report.json content.
-  nlohmann::json report() const;
 };
 
 /// Runs the registration. \throws InvalidInput for bad scans, landmarks or options.
