@@ -3,8 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include <nlohmann/json.hpp>
-
 #include "breastfit/core/errors.h"
 
 namespace breastfit::experiments {
@@ -56,15 +54,6 @@ void ExperimentOptions::validate() const {
     if (!(e >= 8.0 && e <= 40.0))
       throw InvalidInput("template edge " + std::to_string(e) + " mm is outside the builder's [8, 40] mm");
   fit.validate();
-}
-
-nlohmann::json to_json(const ExperimentOptions& o) {
-  return {{"skip", o.skip},
-          {"landmark_counts", o.landmark_counts},
-          {"blendshape_counts", o.blendshape_counts},
-          {"lambda_factors", o.lambda_factors},
-          {"resolution_edges_mm", o.resolution_edges_mm},
-          {"fit_options", fit::to_json(o.fit)}};
 }
 
 }  // namespace breastfit::experiments
