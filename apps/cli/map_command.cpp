@@ -15,6 +15,7 @@
 #include "breastfit/pipeline/scan_input.h"
 #include "breastfit/transfer/fit_directory.h"
 #include "breastfit/transfer/surface_map.h"
+#include "breastfit/transfer/surface_map_json.h"
 #include "command_support.h"
 #include "commands.h"
 
@@ -81,7 +82,7 @@ void register_map(CLI::App& app, int& exit_code) {
     wo.units = b.units;
     wo.points_name = "mapped";
     io::write_markups(args->out, r.markups, wo);
-    nlohmann::json j = r.to_json();
+    nlohmann::json j = transfer::to_json(r);
     j["from"] = args->from;
     j["to"] = args->to;
     j["input"] = args->input;

@@ -10,6 +10,7 @@
 #include "breastfit/model/gltf_io.h"
 #include "breastfit/model/template_library.h"
 #include "breastfit/pipeline/register_outputs.h"
+#include "breastfit/pipeline/register_report_json.h"
 #include "breastfit/pipeline/register_scan.h"
 #include "command_support.h"
 #include "commands.h"
@@ -62,7 +63,7 @@ void register_register(CLI::App& app, int& exit_code) {
       std::cerr << "breastfit: error: " << args->scan << ": " << result.fit.summary.message << "\n";
       // Keep the evidence, but no fitted outputs that could be mistaken for a result.
       fs::create_directories(args->out);
-      std::ofstream(fs::path(args->out) / "report.json") << result.report().dump(1) << "\n";
+      std::ofstream(fs::path(args->out) / "report.json") << pipeline::report_json(result).dump(1) << "\n";
       exit_code = kExitNotConverged;
       return;
     }

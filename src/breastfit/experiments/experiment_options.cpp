@@ -3,10 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include <nlohmann/json.hpp>
-
 #include "breastfit/core/errors.h"
-#include "breastfit/fit/fit_options_json.h"
 
 namespace breastfit::experiments {
 
@@ -65,15 +62,6 @@ void ExperimentOptions::validate() const {
     if (!(e >= 8.0 && e <= 40.0))
       throw InvalidInput("template edge " + std::to_string(e) + " mm is outside the builder's [8, 40] mm");
   fit.validate();
-}
-
-nlohmann::json to_json(const ExperimentOptions& o) {
-  return {{"skip", o.skip},
-          {"landmark_counts", o.landmark_counts},
-          {"blendshape_counts", o.blendshape_counts},
-          {"lambda_factors", o.lambda_factors},
-          {"resolution_edges_mm", o.resolution_edges_mm},
-          {"fit_options", fit::to_json(o.fit)}};
 }
 
 }  // namespace breastfit::experiments

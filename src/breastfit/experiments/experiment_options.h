@@ -6,8 +6,6 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json_fwd.hpp>
-
 #include "breastfit/fit/fit_options.h"
 
 namespace breastfit::experiments {
@@ -53,7 +51,5 @@ struct ExperimentOptions {
   /// \throws InvalidInput for an unknown experiment name in skip, or out-of-range grid values.
   void validate() const;
 };
-
-nlohmann::json to_json(const ExperimentOptions& o);
 
 }  // namespace breastfit::experiments

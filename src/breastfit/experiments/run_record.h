@@ -6,8 +6,6 @@
 #include <utility>
 #include <vector>
 
-#include <nlohmann/json_fwd.hpp>
-
 #include "breastfit/metrics/distance_stats.h"
 
 namespace breastfit::experiments {
@@ -37,11 +35,5 @@ struct RunRecord {
   /// Numbers exist (status "ok" or "not_converged").
   bool has_numbers() const { return status != "error"; }
 };
-
-/// {"case", "pose", "status", "message", "time_s", "iterations", "initialization",
-///  "landmarks_used", "template_vertices", "paper": {"surface", "landmarks"},
-///  "truth": {"surface", "landmarks", "drawings_mm": {name: mm}} (only with truth)}.
-/// Statistics as metrics::to_json (n, mae, sd, max, min, rmse). Non-finite numbers become null.
-nlohmann::json to_json(const RunRecord& r);
 
 }  // namespace breastfit::experiments

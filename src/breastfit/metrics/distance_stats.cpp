@@ -3,8 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include <nlohmann/json.hpp>
-
 namespace breastfit::metrics {
 
 DistanceStats distance_stats(const std::vector<double>& distances) {
@@ -25,10 +23,6 @@ DistanceStats distance_stats(const std::vector<double>& distances) {
   s.rmse = std::sqrt(sum_sq / s.n);
   s.sd = std::sqrt(std::max(0.0, sum_sq / s.n - s.mae * s.mae));
   return s;
-}
-
-nlohmann::json to_json(const DistanceStats& s) {
-  return {{"n", s.n}, {"mae", s.mae}, {"sd", s.sd}, {"max", s.max}, {"min", s.min}, {"rmse", s.rmse}};
 }
 
 }  // namespace breastfit::metrics

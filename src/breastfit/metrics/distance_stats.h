@@ -2,8 +2,6 @@
 /// \file Summary statistics of absolute distances (the paper's Table 1 columns).
 #include <vector>
 
-#include <nlohmann/json_fwd.hpp>
-
 namespace breastfit::metrics {
 
 struct DistanceStats {
@@ -17,7 +15,5 @@ struct DistanceStats {
 
 /// Statistics of |d| over `distances` (all zero with n = 0 when empty).
 DistanceStats distance_stats(const std::vector<double>& distances);
-
-nlohmann::json to_json(const DistanceStats& s);
 
 }  // namespace breastfit::metrics

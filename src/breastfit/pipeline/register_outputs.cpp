@@ -9,6 +9,7 @@
 #include "breastfit/io/io.h"
 #include "breastfit/io/markups.h"
 #include "breastfit/model/params_json.h"
+#include "breastfit/pipeline/register_report_json.h"
 #include "breastfit/pipeline/report_html.h"
 #include "breastfit/transfer/drawing_outputs.h"
 
@@ -77,7 +78,7 @@ void write_register_outputs(const fs::path& dir, const RegisterResult& r, const 
         {"offsets_mm", std::vector<double>(r.fit.detail_offsets.data(),
                                            r.fit.detail_offsets.data() + r.fit.detail_offsets.size())}};
   write_json(dir / "params.json", params);
-  write_json(dir / "report.json", r.report());
+  write_json(dir / "report.json", report_json(r));
   if (options.report_html) {
     write_report_html(dir / "report.html", r, model.name, options.figures);
   } else {

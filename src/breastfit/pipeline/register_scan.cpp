@@ -3,16 +3,12 @@
 #include <cmath>
 #include <cstdio>
 
-#include <nlohmann/json.hpp>
-
 #include "breastfit/core/errors.h"
 #include "breastfit/core/timer.h"
-#include "breastfit/fit/fit_summary_json.h"
 #include "breastfit/fit/scan_target.h"
 #include "breastfit/model/template_library.h"
 #include "breastfit/fit/sliding_landmarks.h"
 #include "breastfit/mesh/landmark_names.h"
-#include "breastfit/mesh/units.h"
 
 namespace breastfit::pipeline {
 namespace {
@@ -90,36 +86,6 @@ RegisterResult register_scan(const RegisterRequest& req, const fit::IterationCal
   out.landmarks = metrics::landmark_errors(model, out.fit.vertices, out.fit.params, out.fit.landmarks);
   out.timings.push_back({"measurements", phase.seconds()});
   return out;
-}
-
-nlohmann::json RegisterResult::report() const {
-  const auto& s = fit.summary;
-  nlohmann::json per_landmark = nlohmann::json::object();
-  for (size_t i = 0; i < landmarks.names.size(); ++i) per_landmark[landmarks.names[i]] = landmarks.distances_mm[i];
-  nlohmann::json j;
-  j["time_s"] = time_s;
-  j["status"] = usable() ? "ok" : "not_usable";
-  j["units"] = std::string(mesh::units_name(scan.units));
-  j["point_cloud"] = scan.was_point_cloud;
-  j["iterations"] = s.iterations.size();
-  j["stopping_reason"] = s.message;
-  j["termination"] = fit::to_string(s.termination);
-  j["converged"] = s.converged();
-  j["verdict"] = s.verdict.reason;
-  j["timings_s"] = fit::timings_json(timings);
-  j["solver"] = fit::to_json(s);
-  j["table1"] = {{"surface_mm", metrics::to_json(surface)},
-                 {"surface_model_only_mm", metrics::to_json(surface_model_only)},
-                 {"landmarks_mm", metrics::to_json(landmarks.stats)},
-                 {"landmark_errors_mm", per_landmark}};
-  nlohmann::json curves = nlohmann::json::object();
-  for (const auto& c : drawings_on_scan)
-    curves[c.name] = {{"closed", c.closed}, {"points", c.points.rows()}, {"length_mm", c.length_mm},
-                      {"supported_fraction", c.supported_fraction}, {"mean_model_to_scan_mm", c.mean_model_to_scan_mm}};
-  j["drawings"] = curves;
-  j["breast_measurements"] = breasts.to_json();
-  j["warnings"] = warnings;
-  return j;
 }
 
 }  // namespace breastfit::pipeline

@@ -7,8 +7,6 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json_fwd.hpp>
-
 #include "breastfit/fit/fit_options.h"
 #include "breastfit/fit/registration.h"
 #include "breastfit/mesh/landmarks.h"
@@ -51,8 +49,6 @@ struct RegisterResult {
   std::vector<fit::PhaseTime> timings;
 
   bool usable() const { return fit.summary.usable(); }
-  /// report.json content.
-  nlohmann::json report() const;
 };
 
 /// Runs the registration. `on_iteration` sees every solver iteration and may abort (the result is

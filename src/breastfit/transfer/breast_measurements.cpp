@@ -9,7 +9,6 @@
 
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
-#include <nlohmann/json.hpp>
 
 #include "breastfit/core/errors.h"
 #include "breastfit/transfer/curve_region.h"
@@ -27,8 +26,6 @@ double signed_volume6(const Points& V, const Triangles& F) {
   }
   return s;
 }
-
-nlohmann::json opt(const std::optional<double>& v) { return v ? nlohmann::json(*v) : nlohmann::json(nullptr); }
 
 std::optional<double> ratio(const std::optional<double>& l, const std::optional<double>& r) {
   if (!l || !r || std::abs(*r) < 1e-12) return std::nullopt;
@@ -206,29 +203,6 @@ BreastMeasurements measure_breasts(const model::RiggedModel& model, const Points
   m.notch_to_nipple_ratio = ratio(m.left.notch_to_nipple_mm, m.right.notch_to_nipple_mm);
   m.nipple_to_imf_ratio = ratio(m.left.nipple_to_imf_mm, m.right.nipple_to_imf_mm);
   return m;
-}
-
-nlohmann::json BreastMeasurements::to_json() const {
-  auto side = [](const BreastSide& b) {
-    nlohmann::json j = {{"volume_ml", opt(b.volume_ml)},
-                        {"notch_to_nipple_mm", opt(b.notch_to_nipple_mm)},
-                        {"nipple_to_imf_mm", opt(b.nipple_to_imf_mm)}};
-    j["imf_lowest_mm"] = b.imf_lowest_mm ? nlohmann::json{b.imf_lowest_mm->x(), b.imf_lowest_mm->y(), b.imf_lowest_mm->z()}
-                                         : nlohmann::json(nullptr);
-    return j;
-  };
-  return {{"right", side(right)},
-          {"left", side(left)},
-          {"inter_nipple_mm", opt(inter_nipple_mm)},
-          {"symmetry_left_over_right",
-           {{"volume", opt(volume_ratio)}, {"notch_to_nipple", opt(notch_to_nipple_ratio)}, {"nipple_to_imf", opt(nipple_to_imf_ratio)}}},
-          {"chest_wall", volume_options.fill == ChestWallFill::ThinPlate ? "thin_plate" : "membrane"},
-          {"chest_wall_margin_mm", volume_options.margin_mm},
-          {"method",
-           "volume between the fitted skin inside the breast contour (breast_contour_R/L on the fitted model) and a "
-           "chest-wall fill spanning the contour (harmonic membrane, or thin plate); straight-line distances on the fitted "
-           "model; lowest fold point along xiphoid->sternal_notch"},
-          {"warnings", warnings}};
 }
 
 }  // namespace breastfit::transfer

@@ -26,8 +26,6 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json_fwd.hpp>
-
 #include "breastfit/core/types.h"
 #include "breastfit/mesh/triangle_mesh.h"
 #include "breastfit/model/rigged_model.h"
@@ -74,9 +72,6 @@ struct BreastMeasurements {
   std::optional<double> nipple_to_imf_ratio;    ///< left / right
   VolumeOptions volume_options;               ///< the chest wall used for the volumes
   std::vector<std::string> warnings;          ///< missing inputs, negative volumes
-  /// {"right": {...}, "left": {...}, "inter_nipple_mm", "symmetry": {...}, "method", "warnings"};
-  /// missing values are null.
-  nlohmann::json to_json() const;
 };
 
 /// Measures both breasts on the posed template.

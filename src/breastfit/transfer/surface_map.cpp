@@ -4,8 +4,6 @@
 #include <optional>
 #include <string>
 
-#include <nlohmann/json.hpp>
-
 #include "breastfit/core/errors.h"
 
 namespace breastfit::transfer {
@@ -53,36 +51,6 @@ int MapResult::count(const std::string& confidence) const {
   int n = 0;
   for (const auto& p : points) n += p.confidence == confidence;
   return n;
-}
-
-nlohmann::json MapResult::to_json() const {
-  nlohmann::json pts = nlohmann::json::array();
-  double max_d = 0, sum_d = 0;
-  int supported = 0, projected = 0;
-  for (const auto& p : points) {
-    pts.push_back({{"markup", p.markup},
-                   {"label", p.label},
-                   {"input_mm", {p.input.x(), p.input.y(), p.input.z()}},
-                   {"output_mm", {p.output.x(), p.output.y(), p.output.z()}},
-                   {"distance_to_fit_a_mm", p.distance_to_fit_a_mm},
-                   {"projected_on_scan_b", p.projected},
-                   {"supported_by_scan_b", p.supported_by_scan_b},
-                   {"scan_b_offset_mm", p.scan_b_offset_mm},
-                   {"confidence", p.confidence}});
-    max_d = std::max(max_d, p.distance_to_fit_a_mm);
-    sum_d += p.distance_to_fit_a_mm;
-    supported += p.supported_by_scan_b;
-    projected += p.projected;
-  }
-  nlohmann::json summary = {{"points", points.size()},
-                            {"high", count("high")},
-                            {"medium", count("medium")},
-                            {"low", count("low")},
-                            {"mean_distance_to_fit_a_mm", points.empty() ? 0.0 : sum_d / static_cast<double>(points.size())},
-                            {"max_distance_to_fit_a_mm", max_d},
-                            {"supported_by_scan_b", supported},
-                            {"projected_on_scan_b", projected}};
-  return {{"format", "breastfit.map"}, {"version", 1}, {"units", "mm"}, {"summary", summary}, {"points", pts}};
 }
 
 MapResult map_markups(const Markups& input, const TriangleMesh& fit_a_mm, const TriangleMesh& fit_b_mm,

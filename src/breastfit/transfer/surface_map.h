@@ -2,12 +2,10 @@
 /// \file Carrying points and curves between two fits of the same template (e.g. a patient's
 /// standing and supine scans) through template correspondence: closest point on fitted A
 /// (triangle + barycentrics) → the same surface point on fitted B → optionally projected onto
-/// scan B (docs/DESIGN.md §5, docs/TRANSFER.md).
+/// scan B (docs/TRANSFER.md).
 #include <memory>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json_fwd.hpp>
 
 #include "breastfit/fit/scan_target.h"
 #include "breastfit/mesh/landmarks.h"
@@ -72,8 +70,6 @@ struct MapResult {
   Markups markups;                ///< the mapped points and curves, mm, frame B, same names/order
   std::vector<MappedPoint> points;  ///< one per control point, in file order (points, then curves)
   int count(const std::string& confidence) const;
-  /// {"points": [...], "summary": {...}} with distances in mm.
-  nlohmann::json to_json() const;
 };
 
 /// Maps every point and curve control point of `input` (mm, frame of fit A) to fit B.

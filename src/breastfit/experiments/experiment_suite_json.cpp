@@ -1,4 +1,4 @@
-#include "breastfit/experiments/experiment_suite.h"
+#include "breastfit/experiments/experiment_suite_json.h"
 
 #include <algorithm>
 #include <cmath>
@@ -11,8 +11,10 @@
 #include "breastfit/core/timer.h"
 #include "breastfit/experiments/case_runner.h"
 #include "breastfit/experiments/case_set.h"
+#include "breastfit/experiments/experiment_options_json.h"
 #include "breastfit/experiments/resolution_templates.h"
-#include "breastfit/experiments/run_summary.h"
+#include "breastfit/experiments/run_record_json.h"
+#include "breastfit/experiments/run_summary_json.h"
 #include "breastfit/mesh/landmark_names.h"
 #include "breastfit/pipeline/register_outputs.h"
 #include "breastfit/template/default_template.h"

@@ -1,4 +1,4 @@
-#include "breastfit/experiments/markdown_cells.h"
+#include "breastfit/experiments/markdown_cells_json.h"
 
 #include <cstdio>
 

@@ -1,4 +1,4 @@
-#include "breastfit/experiments/table1_markdown.h"
+#include "breastfit/experiments/table1_markdown_json.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "breastfit/experiments/markdown_cells.h"
+#include "breastfit/experiments/markdown_cells_json.h"
 
 namespace breastfit::experiments {
 namespace {

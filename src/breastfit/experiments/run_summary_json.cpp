@@ -1,4 +1,4 @@
-#include "breastfit/experiments/run_summary.h"
+#include "breastfit/experiments/run_summary_json.h"
 
 #include <cmath>
 #include <functional>

@@ -1,4 +1,4 @@
-#include "breastfit/experiments/sweeps_markdown.h"
+#include "breastfit/experiments/sweeps_markdown_json.h"
 
 #include <cstdio>
 #include <functional>
@@ -7,7 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "breastfit/experiments/markdown_cells.h"
+#include "breastfit/experiments/markdown_cells_json.h"
 
 namespace breastfit::experiments {
 namespace {

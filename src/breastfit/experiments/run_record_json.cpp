@@ -1,8 +1,6 @@
-#include "breastfit/experiments/run_record.h"
+#include "breastfit/experiments/run_record_json.h"
 
 #include <cmath>
-
-#include <nlohmann/json.hpp>
 
 namespace breastfit::experiments {
 namespace {

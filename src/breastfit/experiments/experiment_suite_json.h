@@ -35,8 +35,8 @@ using ProgressFn = std::function<void(const std::string&)>;
 /// Runs the experiments `options` selects on the cases, with `model` as the template.
 /// \return every number (layout in docs/EXPERIMENTS.md): "config", "cases", and one object per
 ///         experiment that ran ("table1", "landmarks", "blendshapes", "lambdas", "resolution"),
-///         each with "runs" (one record per registration, see run_record.h, plus the setting)
-///         and "summary" (means per setting, standing / supine / all, see run_summary.h),
+///         each with "runs" (one record per registration, see run_record_json.h, plus the setting)
+///         and "summary" (means per setting, standing / supine / all, see run_summary_json.h),
 ///         and "wall_time_s".
 /// A case that cannot be loaded is listed under "cases" with its error and skipped; a
 /// registration that fails is recorded (status "error") and the experiments go on.

@@ -1,0 +1,18 @@
+#pragma once
+/// \file RegisterResult → JSON: the content of report.json, the summary `breastfit register`
+/// (and `demo`, and the experiments' contract outputs) writes next to the fitted model.
+#include <nlohmann/json.hpp>
+
+#include "breastfit/pipeline/register_scan.h"
+
+namespace breastfit::pipeline {
+
+/// report.json: {"time_s", "status": "ok" | "not_converged", "units", "point_cloud", "iterations",
+///  "stopping_reason", "termination", "solver" (fit::to_json of the solver summary),
+///  "table1": {"surface_mm", "surface_model_only_mm", "landmarks_mm" (metrics::to_json),
+///             "landmark_errors_mm": {name: mm}},
+///  "drawings": {name: {"closed", "points", "length_mm", "supported_fraction", "mean_model_to_scan_mm"}},
+///  "breast_measurements" (transfer::to_json), "warnings": [...]}.
+nlohmann::json report_json(const RegisterResult& r);
+
+}  // namespace breastfit::pipeline
