@@ -16,7 +16,7 @@
 #include "breastfit/mesh/units.h"
 #include "breastfit/model/gltf_io.h"
 #include "breastfit/model/template_library.h"
-#include "breastfit/render/body_frame.h"
+#include "breastfit/mesh/body_frame.h"
 #include "breastfit/render/scene.h"
 #include "breastfit/render/torso_overlays.h"
 #include "breastfit/template/default_template.h"
@@ -64,7 +64,7 @@ using render::landmark_point;
 using render::OverlaySizes;
 
 /// Adds the landmarks of a file (positions converted to `scale_to_scene` × mm-or-declared units).
-void add_landmarks(render::Scene& scene, render::NamedPositions& named, const std::string& path,
+void add_landmarks(render::Scene& scene, mesh::NamedPositions& named, const std::string& path,
                    std::optional<mesh::Units> scene_units, const OverlaySizes& sizes) {
   io::LandmarkReadOptions opt;
   opt.require_known_names = false;
@@ -133,7 +133,7 @@ void run_render(const RenderArgs& a) {
     views = {render::view_from_name(a.view)};
 
   render::Scene scene;
-  render::NamedPositions named;
+  mesh::NamedPositions named;
   std::string what;
   Eigen::Matrix4d body_to_world = Eigen::Matrix4d::Identity();
   std::string frame_note = "body frame (identity)";
@@ -188,12 +188,12 @@ void run_render(const RenderArgs& a) {
   // The view frame: the template is in the body frame already; a scan is in a scanner frame.
   const std::string frame_mode = a.frame == "auto" ? (a.use_template ? "identity" : "estimate") : a.frame;
   if (frame_mode == "estimate" || frame_mode == "landmarks" || frame_mode == "axes") {
-    std::optional<render::BodyFrame> bf;
-    if (frame_mode != "axes") bf = render::body_frame_from_landmarks(named);
+    std::optional<mesh::BodyFrame> bf;
+    if (frame_mode != "axes") bf = mesh::body_frame_from_landmarks(named);
     if (!bf && frame_mode == "landmarks")
       throw InvalidInput("render: --frame landmarks needs sternal_notch/xiphoid (or acromions with breasts) "
                          "and a left/right pair (acromion, midaxillary, pectoral_insertion, nipple or lowest_breast)");
-    if (!bf) bf = render::body_frame_from_principal_axes(scene.meshes.front().mesh);
+    if (!bf) bf = mesh::body_frame_from_principal_axes(scene.meshes.front().mesh);
     body_to_world = bf->body_to_world;
     frame_note = "body frame from " + bf->description;
   }

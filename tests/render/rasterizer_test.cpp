@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "breastfit/core/errors.h"
-#include "test_shapes.h"
+#include "support/test_shapes.h"
 
 namespace breastfit::render {
 namespace {

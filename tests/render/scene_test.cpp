@@ -7,7 +7,7 @@
 #include "breastfit/core/errors.h"
 #include "breastfit/render/colormap.h"
 #include "support/test_paths.h"
-#include "test_shapes.h"
+#include "support/test_shapes.h"
 
 namespace breastfit::render {
 namespace {

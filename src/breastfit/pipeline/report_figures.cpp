@@ -10,7 +10,7 @@
 #include "breastfit/core/errors.h"
 #include "breastfit/fit/scan_target.h"
 #include "breastfit/mesh/cleanup.h"
-#include "breastfit/render/body_frame.h"
+#include "breastfit/mesh/body_frame.h"
 #include "breastfit/render/torso_overlays.h"
 
 namespace breastfit::pipeline {
@@ -74,10 +74,10 @@ render::RenderOptions base_options(const ReportFigureOptions& o, const Eigen::Ma
   return ro;
 }
 
-render::BodyFrame body_frame_of(const RegisterResult& r) {
-  render::NamedPositions named;
+mesh::BodyFrame body_frame_of(const RegisterResult& r) {
+  mesh::NamedPositions named;
   for (const auto& p : r.model_landmarks_mm.points) named[p.name] = p.position;
-  return render::estimate_body_frame(r.fitted_mm, named);
+  return mesh::estimate_body_frame(r.fitted_mm, named);
 }
 
 /// The scan without the triangles that lie outside the fitted model's box (in the body frame)
@@ -193,7 +193,7 @@ ReportFigures render_report_figures(const RegisterResult& r, const ReportFigureO
   if (r.fitted_mm.V.rows() == 0 || r.scan.mesh_mm.V.rows() == 0)
     throw InvalidInput("render_report_figures: the result has no fitted model or no scan");
   ReportFigures out;
-  const render::BodyFrame frame = body_frame_of(r);
+  const mesh::BodyFrame frame = body_frame_of(r);
   out.body_frame = frame.description;
 
   const render::Scene scene = overlay_scene(r, o);

@@ -8,7 +8,7 @@
 ///  3. front view of the fitted model coloured by its distance to the scan (viridis over a fixed
 ///     0 … `distance_range_mm` range so reports are comparable; grey where the scan has no
 ///     surface to compare with: over holes and beyond the scanned area).
-/// The body frame comes from the fitted model's landmarks (render::body_frame_from_landmarks),
+/// The body frame comes from the fitted model's landmarks (mesh::body_frame_from_landmarks),
 /// else from the fitted model's shape. Deterministic: the same result gives identical pixels.
 #include <cstdint>
 #include <string>

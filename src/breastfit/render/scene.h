@@ -9,7 +9,7 @@
 ///   scene.points.push_back({.label = "nipple_R", .position = p});
 ///   render::RenderOptions opt;
 ///   opt.view = render::View::Front;
-///   opt.body_to_world = render::estimate_body_frame(scan, landmarks).body_to_world;
+///   opt.body_to_world = mesh::estimate_body_frame(scan, landmarks).body_to_world;
 ///   render::render_scene(scene, opt).save_png("front.png");
 /// \endcode
 #include <optional>

@@ -4,7 +4,7 @@
 #include <string>
 
 #include "breastfit/core/errors.h"
-#include "breastfit/render/body_frame.h"
+#include "breastfit/mesh/body_frame.h"
 #include "breastfit/spatial/ray_caster.h"
 #include "breastfit/transfer/polyline.h"
 
@@ -165,9 +165,9 @@ std::vector<TransferredCurve> transfer_drawings(const model::RiggedModel& model,
   fitted.F = model.rest.F;
   DrawingTransfer transfer(scan, fitted, options);
   // Body axes from the fitted landmarks (for the fold slide); without them no slide.
-  render::NamedPositions lms;
+  mesh::NamedPositions lms;
   for (const auto& l : model.landmarks) lms[l.name] = l.point.position(posed_mm, model.rest.F);
-  if (const auto frame = render::body_frame_from_landmarks(lms)) {
+  if (const auto frame = mesh::body_frame_from_landmarks(lms)) {
     const Mat3 R = frame->body_to_world.topLeftCorner<3, 3>();
     transfer.set_body_axes(R.col(2).normalized(), -R.col(1).normalized());  // LPS: +z superior, −y anterior
   }

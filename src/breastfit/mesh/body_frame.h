@@ -1,6 +1,7 @@
 #pragma once
 /// \file Estimating a torso's body frame (LPS: x = patient's left, y = posterior, z = superior)
-/// in an arbitrary scanner frame, so the standard views (view.h) can be rendered for any scan.
+/// in an arbitrary scanner frame: the standard views (render/view.h) and the body axes of the
+/// drawing transfer's fold slide (transfer/drawing_transfer.h) are expressed in it.
 #include <map>
 #include <optional>
 #include <string>
@@ -10,7 +11,7 @@
 #include "breastfit/core/types.h"
 #include "breastfit/mesh/triangle_mesh.h"
 
-namespace breastfit::render {
+namespace breastfit::mesh {
 
 /// Landmark positions by name (names as in breastfit/mesh/landmark_names.h), world coordinates.
 using NamedPositions = std::map<std::string, Vec3, std::less<>>;
@@ -62,4 +63,4 @@ BodyFrame body_frame_from_principal_axes(const TriangleMesh& mesh);
 BodyFrame estimate_body_frame(const TriangleMesh& mesh, const NamedPositions& landmarks,
                               double sternum_inclination_deg = kSternumInclinationDeg);
 
-}  // namespace breastfit::render
+}  // namespace breastfit::mesh

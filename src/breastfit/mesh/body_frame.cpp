@@ -1,4 +1,4 @@
-#include "breastfit/render/body_frame.h"
+#include "breastfit/mesh/body_frame.h"
 
 #include <algorithm>
 #include <array>
@@ -11,7 +11,7 @@
 
 #include "breastfit/core/errors.h"
 
-namespace breastfit::render {
+namespace breastfit::mesh {
 
 namespace {
 
@@ -274,4 +274,4 @@ BodyFrame estimate_body_frame(const TriangleMesh& mesh, const NamedPositions& la
   return body_frame_from_principal_axes(mesh);
 }
 
-}  // namespace breastfit::render
+}  // namespace breastfit::mesh

@@ -1,5 +1,5 @@
 #pragma once
-// Small synthetic meshes for the render tests (header-only, test code).
+// Small synthetic meshes for the render and mesh tests (header-only, test code).
 #include <cmath>
 
 #include "breastfit/mesh/triangle_mesh.h"

@@ -1,13 +1,13 @@
-#include "breastfit/render/body_frame.h"
+#include "breastfit/mesh/body_frame.h"
 
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
 
 #include "breastfit/core/errors.h"
-#include "test_shapes.h"
+#include "support/test_shapes.h"
 
-namespace breastfit::render {
+namespace breastfit::mesh {
 namespace {
 
 /// Landmarks of a schematic torso in the body frame (mm, LPS).
@@ -133,4 +133,4 @@ TEST(BodyFrame, PrincipalAxesRejectsDegenerateShapes) {
 }
 
 }  // namespace
-}  // namespace breastfit::render
+}  // namespace breastfit::mesh
