@@ -57,7 +57,7 @@ double max_relative_error(const Eigen::MatrixXd& A, const Eigen::MatrixXd& N) {
   return worst;
 }
 
-/// Direct evaluation of docs/DESIGN.md §2 (reference for the evaluator).
+/// Direct evaluation of docs/MODEL.md (reference for the evaluator).
 Points naive_pose(const RiggedModel& m, const PoseParams& p) {
   Points out(m.num_vertices(), 3);
   for (Index i = 0; i < m.num_vertices(); ++i) {

@@ -36,7 +36,7 @@ TEST(RegisterReportJson, LayoutAndNumbersOfARealRegistration) {
   EXPECT_EQ(j["units"], "mm");
   EXPECT_EQ(j["point_cloud"], r.scan.was_point_cloud);
   EXPECT_EQ(j["iterations"], r.fit.summary.iterations.size());
-  EXPECT_EQ(j["stopping_reason"], r.fit.summary.message);
+  EXPECT_EQ(j["stopping_reason"], r.fit.summary.termination_message);
   EXPECT_EQ(j["termination"], fit::to_string(r.fit.summary.termination));
   EXPECT_TRUE(j["solver"].is_object());
 

@@ -1,5 +1,5 @@
 #pragma once
-/// \file The ground truth of a case in the bench layout (/work/shared/bench/README.md, written by
+/// \file The ground truth of a case in the bench layout (docs/SYNTH.md "Case layout", written by
 /// `breastfit synth` too): truth/surface.ply, truth/landmarks.json, truth/curves.json and the
 /// units in truth/meta.json. Only experiments read it; a registration never does.
 #include <filesystem>

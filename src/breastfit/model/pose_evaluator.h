@@ -1,5 +1,5 @@
 #pragma once
-/// \file Posing of the rigged template and its analytic Jacobians (docs/DESIGN.md §2):
+/// \file Posing of the rigged template and its analytic Jacobians (docs/MODEL.md):
 ///   B_i = v_i + Σ_k α_k b_ki
 ///   x_i = Σ_j w_ji ( R_j U_j diag(s_j) U_jᵀ (B_i − c_j) + c_j + t_j )
 ///   M_i = s_g R_g x_i + t_g

@@ -1,5 +1,5 @@
 #pragma once
-/// \file The parameters θ of a posed template (docs/DESIGN.md §2).
+/// \file The parameters θ of a posed template (docs/MODEL.md).
 #include <vector>
 
 #include <Eigen/Core>

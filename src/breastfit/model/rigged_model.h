@@ -1,6 +1,6 @@
 #pragma once
 /// \file The rigged template: rest mesh, scalable bones, skin weights, bounded blendshapes,
-/// landmarks and drawings stored as surface points (paper §2.4–2.6, docs/DESIGN.md §2).
+/// landmarks and drawings stored as surface points (paper §2.4–2.6, docs/MODEL.md).
 #include <optional>
 #include <string>
 #include <vector>

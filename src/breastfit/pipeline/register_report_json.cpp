@@ -19,7 +19,7 @@ nlohmann::json report_json(const RegisterResult& r) {
   j["units"] = std::string(mesh::units_name(r.scan.units));
   j["point_cloud"] = r.scan.was_point_cloud;
   j["iterations"] = s.iterations.size();
-  j["stopping_reason"] = s.message;
+  j["stopping_reason"] = s.termination_message;
   j["termination"] = fit::to_string(s.termination);
   j["converged"] = s.converged();
   j["verdict"] = s.verdict.reason;

@@ -92,8 +92,8 @@ void warnings_box(std::string& h, const RegisterResult& r) {
   std::vector<std::string> all = r.warnings;
   for (const auto& w : r.breasts.warnings) all.push_back("breast measurements: " + w);
   if (!r.usable()) {
-    h += "<div class=\"box failed\"><h2>The registration did not converge</h2><p>" +
-         html_escape(r.fit.summary.message) + ". Do not use the drawings or measurements of this report.</p></div>\n";
+    h += "<div class=\"box failed\"><h2>The registration is not usable</h2><p>" +
+         html_escape(r.fit.summary.verdict.reason) + ". Do not use the drawings or measurements of this report.</p></div>\n";
   }
   if (all.empty()) {
     h += "<div class=\"box clean\"><b>No warnings.</b></div>\n";
@@ -126,10 +126,9 @@ void registration_table(std::string& h, const RegisterResult& r, const ReportFig
   for (const auto& st : s.stages)
     stages += (stages.empty() ? "" : ", ") + html_escape(st.name) + " " + std::to_string(st.iterations);
   row(h, "Iterations", std::to_string(s.iterations.size()) + (stages.empty() ? "" : " (" + stages + ")"));
-  const std::string termination = fit::to_string(s.termination);
-  row(h, "Stopping reason",
-      html_escape(s.message) +
-          (s.message.find(termination) == std::string::npos ? " <span class=\"note\">(" + termination + ")</span>" : ""));
+  row(h, "Verdict", html_escape(s.verdict.reason));
+  row(h, "Solver", html_escape(s.termination_message) + " <span class=\"note\">(" + fit::to_string(s.termination) +
+                       (s.converged() ? ": converged" : "") + ")</span>");
   row(h, "Initialisation",
       html_escape(s.initialization) + ", " + std::to_string(s.landmarks_used) + " landmark" +
           (s.landmarks_used == 1 ? "" : "s") + " used");

@@ -2,7 +2,7 @@
 /// \file Front door of the synth layer: one synthetic scan case with full ground truth, in
 /// memory (make_case) and on disk in the bench layout (write_case, case_writer.h).
 ///
-/// Frames (as in the bench, /work/shared/bench/README.md "Frames and units"): the subject is
+/// Frames (as in the bench cases, docs/SYNTH.md): the subject is
 /// generated in the body frame (LPS mm: x = patient left, y = posterior, z = superior); every
 /// output mesh/point is in the scanner frame and the case's file units:
 ///   x_file = s · (R · x_body + t),  T_body_to_scan_mm = [R t; 0 1],  s = scale_mm_to_file_units.

@@ -5,7 +5,7 @@
 /// ~2 mm triangles and deformed slightly outside the model's space (so no fit is ever exact),
 /// then seen by a simulated handheld scanner (camera ring, visibility, holes, noise, fragments,
 /// table), rigidly misaligned and written in mm or m exactly like the bench cases
-/// (/work/shared/bench/README.md). Lengths are millimetres unless the name says otherwise.
+/// (docs/SYNTH.md "Case layout"). Lengths are millimetres unless the name says otherwise.
 #include <cstdint>
 #include <string>
 #include <string_view>

@@ -1,6 +1,6 @@
 #pragma once
 /// \file Transfer of the template's surgical drawings from the fitted model onto the scan
-/// (docs/DESIGN.md §5, docs/TRANSFER.md): each drawing is evaluated on the fitted (posed)
+/// (docs/TRANSFER.md): each drawing is evaluated on the fitted (posed)
 /// template, resampled every ~1 mm on the fitted surface, projected onto the scan where the scan
 /// supports it (the model's point is kept and flagged elsewhere), and smoothed lightly while
 /// staying on the surface.
