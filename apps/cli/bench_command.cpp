@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "breastfit/core/errors.h"
+#include "breastfit/experiments/case_set.h"
 #include "breastfit/io/io.h"
 #include "breastfit/io/landmarks_io.h"
 #include "breastfit/pipeline/register_scan.h"
@@ -21,19 +22,6 @@ double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   const size_t n = v.size();
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
-// Case directories: DIR itself when it holds scan.ply, else its subdirectories that do (sorted).
-std::vector<std::filesystem::path> case_dirs(const std::filesystem::path& dir) {
-  namespace fs = std::filesystem;
-  if (!fs::is_directory(dir)) throw IoError(dir.string(), "not a directory");
-  if (fs::exists(dir / "scan.ply")) return {dir};
-  std::vector<fs::path> out;
-  for (const auto& e : fs::directory_iterator(dir))
-    if (e.is_directory() && fs::exists(e.path() / "scan.ply")) out.push_back(e.path());
-  std::sort(out.begin(), out.end());
-  if (out.empty()) throw IoError(dir.string(), "holds no case directory (a folder with scan.ply)");
-  return out;
 }
 
 }  // namespace
@@ -63,7 +51,7 @@ void register_bench(CLI::App& app, int& exit_code) {
     nlohmann::json cases = nlohmann::json::array();
     std::vector<double> medians;
     std::printf("%-24s %9s %6s %10s %10s %8s\n", "case", "time_s", "iters", "surf_mae", "lm_mae", "status");
-    for (const auto& dir : case_dirs(args->dir)) {
+    for (const auto& dir : experiments::find_case_dirs(args->dir)) {
       pipeline::RegisterRequest req;
       req.scan = io::read_mesh(dir / "scan.ply");
       req.scan_name = (dir / "scan.ply").string();

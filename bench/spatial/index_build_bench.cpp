@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "breastfit/core/types.h"
+#include "breastfit/mesh/normals.h"
 #include "breastfit/mesh/triangle_mesh.h"
 #include "breastfit/spatial/closest_point_index.h"
 #include "bumpy_ellipsoid.h"
@@ -70,7 +71,7 @@ void BM_TriangleFlags(benchmark::State& state) {
 void BM_VertexNormals(benchmark::State& state) {
   const TriangleMesh& m = mesh(static_cast<int>(state.range(0)));
   for (auto _ : state) {
-    const auto normals = detail::area_weighted_vertex_normals(m);
+    const auto normals = breastfit::mesh::vertex_normals(m);
     benchmark::DoNotOptimize(normals.data());
   }
   set_counters(state, m);

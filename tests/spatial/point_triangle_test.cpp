@@ -101,6 +101,13 @@ TEST(PointTriangle, EveryRegionOfAUnitTriangle) {
   EXPECT_NEAR(r.bary[2], 0.5, 1e-15);
 }
 
+TEST(PointTriangle, FaceRegionBarycentrics) {
+  const PointTriangleResult r =
+      closest_point_on_triangle(Vec3(0.2, 0.2, 5), Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0));
+  EXPECT_NEAR((r.point - Vec3(0.2, 0.2, 0)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR((r.bary - Vec3(0.6, 0.2, 0.2)).norm(), 0.0, 1e-12);
+}
+
 TEST(PointTriangle, MatchesReferenceOnRandomTriangles) {
   Rng rng(7);
   for (int i = 0; i < 20000; ++i) {

@@ -152,10 +152,19 @@ TEST(SurfaceQueries, ClosestPointAndRayHit) {
   ASSERT_TRUE(hit.has_value());
   EXPECT_NEAR(hit->position(m.V, m.F).x(), 30.0, 0.5);
   EXPECT_FALSE(first_ray_hit(m, Vec3(0, 0, 100), Vec3::UnitZ(), 100).has_value());
-  Vec3 bary;
-  const Vec3 q = closest_point_on_triangle(Vec3(0.2, 0.2, 5), Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), &bary);
-  EXPECT_NEAR((q - Vec3(0.2, 0.2, 0)).norm(), 0.0, 1e-12);
-  EXPECT_NEAR((bary - Vec3(0.6, 0.2, 0.2)).norm(), 0.0, 1e-12);
+}
+
+TEST(SurfaceQueries, ClosestPointOnDegenerateTriangleIsOnItsEdges) {
+  // A collinear triangle (face 0) hides nothing: the answer lies on its longest edge.
+  TriangleMesh m;
+  m.V.resize(3, 3);
+  m.V << 0, 0, 0, 1, 0, 0, 3, 0, 0;
+  m.F.resize(1, 3);
+  m.F << 0, 1, 2;
+  const SurfacePoint cp = closest_surface_point(m, Vec3(2, 1, 0));
+  EXPECT_EQ(cp.face, 0);
+  EXPECT_NEAR((cp.position(m.V, m.F) - Vec3(2, 0, 0)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR(cp.bary.sum(), 1.0, 1e-12);
 }
 
 TEST(HeatWeights, PartitionOfUnityAndSmoothness) {

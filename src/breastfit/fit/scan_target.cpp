@@ -5,6 +5,7 @@
 
 #include "breastfit/core/errors.h"
 #include "breastfit/core/rng.h"
+#include "breastfit/mesh/normals.h"
 #include "breastfit/spatial/closest_point_index.h"
 
 namespace breastfit::fit {
@@ -16,12 +17,10 @@ ScanTarget::ScanTarget(const TriangleMesh& scan_mm, int num_samples) {
   // Area-uniform deterministic samples.
   const Index nf = mesh.num_faces();
   std::vector<double> cumulative(nf, 0.0);
+  const Eigen::VectorXd area = mesh::face_areas(mesh);
   double total = 0.0;
   for (Index f = 0; f < nf; ++f) {
-    const auto a = mesh.F(f, 0), b = mesh.F(f, 1), c = mesh.F(f, 2);
-    const Vec3 e1 = mesh.V.row(b) - mesh.V.row(a);
-    const Vec3 e2 = mesh.V.row(c) - mesh.V.row(a);
-    total += 0.5 * e1.cross(e2).norm();
+    total += area[f];
     cumulative[f] = total;
   }
   if (num_samples > 0 && total > 0) {

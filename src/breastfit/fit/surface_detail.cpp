@@ -10,24 +10,11 @@
 
 #include "breastfit/core/errors.h"
 #include "breastfit/fit/correspondences.h"
+#include "breastfit/mesh/adjacency.h"
 #include "breastfit/mesh/normals.h"
 
 namespace breastfit::fit {
 namespace {
-
-// Unique undirected edges (i < j) of the triangles, sorted.
-std::vector<std::array<Index, 2>> unique_edges(const Triangles& F) {
-  std::vector<std::array<Index, 2>> e;
-  e.reserve(3 * F.rows());
-  for (Index f = 0; f < F.rows(); ++f)
-    for (int k = 0; k < 3; ++k) {
-      const Index a = F(f, k), b = F(f, (k + 1) % 3);
-      e.push_back({std::min(a, b), std::max(a, b)});
-    }
-  std::sort(e.begin(), e.end());
-  e.erase(std::unique(e.begin(), e.end()), e.end());
-  return e;
-}
 
 // V + h · N, row by row.
 Points displaced(const Points& V, const Points& N, const Eigen::VectorXd& h) {
@@ -54,7 +41,7 @@ SurfaceDetail fit_surface_detail(const Points& V, const Triangles& F, const Scan
 
   const Points N = mesh::vertex_normals(V, F);
   // μ · graph Laplacian + ε · I: fixed over the passes; the data weights change the diagonal only.
-  const auto edges = unique_edges(F);
+  const auto edges = mesh::unique_edges(F, n);
   std::vector<Eigen::Triplet<double>> trip;
   trip.reserve(4 * edges.size() + n);
   Eigen::VectorXd base_diag = Eigen::VectorXd::Constant(n, o.decay);

@@ -9,21 +9,13 @@
 #include "breastfit/io/detail/file_bytes.h"
 #include "breastfit/io/detail/mesh_arrays.h"
 #include "breastfit/io/detail/text.h"
+#include "breastfit/mesh/normals.h"
 
 namespace breastfit::io {
 namespace {
 
 static_assert(std::endian::native == std::endian::little,
               "the binary STL writer assumes a little-endian host");
-
-Eigen::Vector3d face_normal(const TriangleMesh& mesh, Eigen::Index f) {
-  const Eigen::Vector3d a = mesh.V.row(mesh.F(f, 0)).transpose();
-  const Eigen::Vector3d b = mesh.V.row(mesh.F(f, 1)).transpose();
-  const Eigen::Vector3d c = mesh.V.row(mesh.F(f, 2)).transpose();
-  const Eigen::Vector3d n = (b - a).cross(c - a);
-  const double len = n.norm();
-  return len > 0 && std::isfinite(len) ? Eigen::Vector3d(n / len) : Eigen::Vector3d::Zero();
-}
 
 void put_float(std::string& out, double v) {
   const float f = static_cast<float>(v);
@@ -36,6 +28,7 @@ void put_float(std::string& out, double v) {
 
 std::string write_stl_to_memory(const TriangleMesh& mesh, const MeshWriteOptions& options) {
   detail::check_mesh_for_writing(mesh);
+  const Points N = mesh::face_normals(mesh);  // zero rows for degenerate triangles
   std::string out;
   if (options.binary) {
     std::string header = "binary STL written by breastfit";
@@ -47,7 +40,7 @@ std::string write_stl_to_memory(const TriangleMesh& mesh, const MeshWriteOptions
     out.append(b, 4);
     out.reserve(84 + 50 * static_cast<std::size_t>(count));
     for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
-      const Eigen::Vector3d n = face_normal(mesh, f);
+      const Eigen::Vector3d n = N.row(f).transpose();
       for (int k = 0; k < 3; ++k) put_float(out, n[k]);
       for (int c = 0; c < 3; ++c) {
         for (int k = 0; k < 3; ++k) put_float(out, mesh.V(mesh.F(f, c), k));
@@ -61,7 +54,7 @@ std::string write_stl_to_memory(const TriangleMesh& mesh, const MeshWriteOptions
   auto number = [](double v) { return detail::format_double(static_cast<float>(v)); };
   out += "solid breastfit\n";
   for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
-    const Eigen::Vector3d n = face_normal(mesh, f);
+    const Eigen::Vector3d n = N.row(f).transpose();
     out += "  facet normal " + number(n[0]) + " " + number(n[1]) + " " + number(n[2]) + "\n";
     out += "    outer loop\n";
     for (int c = 0; c < 3; ++c) {

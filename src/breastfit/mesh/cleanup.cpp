@@ -5,18 +5,10 @@
 
 #include "breastfit/core/errors.h"
 #include "breastfit/mesh/components.h"
+#include "breastfit/mesh/triangle_indices.h"
 
 namespace breastfit::mesh {
 namespace {
-
-void check_indices(const Triangles& F, Index num_vertices) {
-  for (Eigen::Index f = 0; f < F.rows(); ++f)
-    for (int c = 0; c < 3; ++c)
-      if (F(f, c) < 0 || F(f, c) >= num_vertices)
-        throw InvalidInput("triangle " + std::to_string(f) + " has vertex index " +
-                           std::to_string(F(f, c)) + " outside [0, " +
-                           std::to_string(num_vertices) + ")");
-}
 
 /// Keeps the triangles with keep[f] (and their FUV rows).
 void keep_faces(TriangleMesh& mesh, const std::vector<bool>& keep) {
@@ -39,7 +31,7 @@ std::vector<bool> degenerate_faces(const Points& V, const Triangles& F,
   if (!(relative_area_tolerance >= 0.0))
     throw InvalidInput("relative_area_tolerance = " + std::to_string(relative_area_tolerance) +
                        " must be >= 0");
-  check_indices(F, static_cast<Index>(V.rows()));
+  check_triangle_indices(F, static_cast<Index>(V.rows()));
   std::vector<bool> bad(static_cast<size_t>(F.rows()), false);
   for (Eigen::Index f = 0; f < F.rows(); ++f) {
     const Index i = F(f, 0), j = F(f, 1), k = F(f, 2);
@@ -68,7 +60,7 @@ std::vector<std::optional<Index>> remove_unreferenced_vertices(TriangleMesh& mes
     for (Index v = 0; v < nv; ++v) map[static_cast<size_t>(v)] = v;
     return map;
   }
-  check_indices(mesh.F, nv);
+  check_triangle_indices(mesh.F, nv);
   std::vector<bool> used(static_cast<size_t>(nv), false);
   for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
     for (int c = 0; c < 3; ++c) used[static_cast<size_t>(mesh.F(f, c))] = true;
@@ -126,7 +118,7 @@ void CleanupOptions::validate() const {
 
 CleanupSummary cleanup(TriangleMesh& mesh, const CleanupOptions& options) {
   options.validate();
-  check_indices(mesh.F, mesh.num_vertices());
+  check_triangle_indices(mesh.F, mesh.num_vertices());
   CleanupSummary s;
   if (options.remove_degenerate)
     s.removed_degenerate_faces = remove_degenerate_faces(mesh, options.relative_area_tolerance);

@@ -4,7 +4,7 @@
 #include <numeric>
 #include <string>
 
-#include "breastfit/core/errors.h"
+#include "breastfit/mesh/triangle_indices.h"
 
 namespace breastfit::mesh {
 namespace {
@@ -25,14 +25,7 @@ Components connected_components(const Triangles& F, Index num_vertices) {
   const size_t nf = static_cast<size_t>(F.rows());
   std::vector<Index> parent(nv);
   std::iota(parent.begin(), parent.end(), Index(0));
-  for (size_t f = 0; f < nf; ++f)
-    for (int c = 0; c < 3; ++c) {
-      const Index v = F(static_cast<Eigen::Index>(f), c);
-      if (v < 0 || v >= num_vertices)
-        throw InvalidInput("triangle " + std::to_string(f) + " has vertex index " +
-                           std::to_string(v) + " outside [0, " + std::to_string(num_vertices) +
-                           ")");
-    }
+  check_triangle_indices(F, num_vertices);
   for (size_t f = 0; f < nf; ++f) {
     const auto fi = static_cast<Eigen::Index>(f);
     const Index r0 = find_root(parent, F(fi, 0));

@@ -5,9 +5,11 @@
 #include <string>
 
 #include "breastfit/core/errors.h"
+#include "breastfit/mesh/adjacency.h"
 #include "breastfit/mesh/boundary.h"
 #include "breastfit/mesh/cleanup.h"
 #include "breastfit/mesh/components.h"
+#include "breastfit/mesh/triangle_indices.h"
 
 namespace breastfit::mesh {
 namespace {
@@ -30,15 +32,7 @@ std::string fmt(const Vec3& v) {
 }
 
 EdgeLengthStats edge_length_stats(const Points& V, const Triangles& F) {
-  std::vector<std::pair<Index, Index>> edges;
-  edges.reserve(static_cast<size_t>(F.rows()) * 3);
-  for (Eigen::Index f = 0; f < F.rows(); ++f)
-    for (int c = 0; c < 3; ++c) {
-      const Index a = F(f, c), b = F(f, (c + 1) % 3);
-      if (a != b) edges.push_back({std::min(a, b), std::max(a, b)});
-    }
-  std::sort(edges.begin(), edges.end());
-  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  const auto edges = unique_edges(F, static_cast<Index>(V.rows()));
   EdgeLengthStats s;
   s.count = static_cast<Index>(edges.size());
   if (edges.empty()) return s;
@@ -69,11 +63,7 @@ MeshStats mesh_stats(const TriangleMesh& mesh, std::optional<Units> units) {
   const Points& V = mesh.V;
   const Triangles& F = mesh.F;
   const Index nv = mesh.num_vertices();
-  for (Eigen::Index f = 0; f < F.rows(); ++f)
-    for (int c = 0; c < 3; ++c)
-      if (F(f, c) < 0 || F(f, c) >= nv)
-        throw InvalidInput("triangle " + std::to_string(f) + " has vertex index " +
-                           std::to_string(F(f, c)) + " outside [0, " + std::to_string(nv) + ")");
+  check_triangle_indices(F, nv);
 
   MeshStats s;
   s.num_vertices = nv;

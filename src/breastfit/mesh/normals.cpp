@@ -1,19 +1,25 @@
 #include "breastfit/mesh/normals.h"
 
-#include <string>
+#include <cmath>
 
-#include "breastfit/core/errors.h"
+#include "breastfit/mesh/triangle_indices.h"
 
 namespace breastfit::mesh {
 namespace {
 
 void check_indices(const Points& V, const Triangles& F) {
-  const Index n = static_cast<Index>(V.rows());
-  for (Eigen::Index f = 0; f < F.rows(); ++f)
-    for (int c = 0; c < 3; ++c)
-      if (F(f, c) < 0 || F(f, c) >= n)
-        throw InvalidInput("triangle " + std::to_string(f) + " has vertex index " +
-                           std::to_string(F(f, c)) + " outside [0, " + std::to_string(n) + ")");
+  check_triangle_indices(F, static_cast<Index>(V.rows()));
+}
+
+/// The normalisation rule of the file comment: x / |x|, or zero when |x| is 0 or not finite.
+template <class Vector>
+void normalise_or_zero(Vector&& x) {
+  const double len = x.norm();
+  if (len > 0.0 && std::isfinite(len)) {
+    x /= len;
+  } else {
+    x.setZero();
+  }
 }
 
 Vec3 cross_of(const Points& V, const Triangles& F, Eigen::Index f) {
@@ -29,9 +35,9 @@ Points face_normals(const Points& V, const Triangles& F) {
   check_indices(V, F);
   Points N(F.rows(), 3);
   for (Eigen::Index f = 0; f < F.rows(); ++f) {
-    const Vec3 n = cross_of(V, F, f);
-    const double len = n.norm();
-    N.row(f) = (len > 0.0 ? Vec3(n / len) : Vec3::Zero()).transpose();
+    Vec3 n = cross_of(V, F, f);
+    normalise_or_zero(n);
+    N.row(f) = n.transpose();
   }
   return N;
 }
@@ -54,10 +60,7 @@ Points vertex_normals(const Points& V, const Triangles& F) {
     const Eigen::RowVector3d n = cross_of(V, F, f).transpose();  // |n| = 2 * area
     for (int c = 0; c < 3; ++c) N.row(F(f, c)) += n;
   }
-  for (Eigen::Index v = 0; v < N.rows(); ++v) {
-    const double len = N.row(v).norm();
-    if (len > 0.0) N.row(v) /= len;
-  }
+  for (Eigen::Index v = 0; v < N.rows(); ++v) normalise_or_zero(N.row(v));
   return N;
 }
 

@@ -4,6 +4,12 @@
 /// Units-agnostic: areas are in squared mesh units, normals are unit vectors. A triangle's normal
 /// follows its winding (counter-clockwise seen from outside = outward).
 ///
+/// One rule for what has no normal: a face or vertex normal is a zero row when the cross product
+/// it normalises (the face's, or the sum over a vertex's triangles) has zero or non-finite
+/// length — a degenerate (zero-area) triangle, a vertex no triangle of non-zero area uses
+/// (isolated vertices, every vertex of a point cloud), or overflowing/NaN coordinates. Callers
+/// that need a unit vector everywhere substitute their own fallback for zero rows.
+///
 /// Example:
 /// \code
 ///   breastfit::Points N = breastfit::mesh::vertex_normals(scan);   // #V by 3, unit rows
@@ -18,7 +24,7 @@ namespace breastfit::mesh {
 /// Unit normal of every triangle, (v1 - v0) x (v2 - v0) normalised.
 /// \param[in] V  #V by 3 vertex positions
 /// \param[in] F  #F by 3 vertex indices (in range)
-/// \return #F by 3; a zero row for a degenerate (zero-area) triangle
+/// \return #F by 3; a zero row for a degenerate (zero-area) triangle (see the file comment)
 Points face_normals(const Points& V, const Triangles& F);
 Points face_normals(const TriangleMesh& mesh);
 
@@ -32,7 +38,7 @@ Eigen::VectorXd face_areas(const TriangleMesh& mesh);
 /// \param[in] V  #V by 3 vertex positions
 /// \param[in] F  #F by 3 vertex indices (in range)
 /// \return #V by 3 unit rows; a zero row for a vertex with no incident triangle of non-zero area
-///         (e.g. every vertex of a point cloud — see spatial/point_cloud_normals.h for those)
+///         (see the file comment; for point clouds see spatial/point_cloud_normals.h)
 /// \throws InvalidInput if an index of F is out of range
 Points vertex_normals(const Points& V, const Triangles& F);
 Points vertex_normals(const TriangleMesh& mesh);

@@ -13,6 +13,7 @@
 #include <tiny_gltf.h>
 
 #include "breastfit/core/errors.h"
+#include "breastfit/mesh/normals.h"
 
 namespace breastfit::model {
 namespace {
@@ -87,6 +88,41 @@ json vec_json(const Vec3& v) { return json::array({v.x(), v.y(), v.z()}); }
 // =============================================================================================
 // Loading
 
+/// One vertex's skin influences (joint index within the skin, weight).
+using Influences = std::vector<std::pair<int, double>>;
+
+/// The triangle primitives of the mesh, concatenated in order, as stored (glTF frame).
+struct RawMesh {
+  std::vector<Vec3> positions;
+  std::vector<Eigen::Vector3i> faces;
+  std::vector<Influences> influences;     // per vertex
+  std::vector<std::vector<Vec3>> morphs;  // [target][vertex]
+  int num_targets = -1;                   // -1 until the first primitive is read
+};
+
+/// The bones in model order (parents first) and the skin's bind state.
+struct Skeleton {
+  std::vector<int> bone_joint;    // bone -> joint index in skin
+  std::vector<int> joint_bone;    // joint index -> bone
+  std::vector<int> bone_parent;   // bone -> parent bone or -1
+  std::vector<Mat4> skin_matrix;  // per joint: world_j · IBM_j
+  bool bind_is_identity = true;
+};
+
+/// Rest positions (model frame) and morph displacements of every raw vertex.
+struct ModelFrameVertices {
+  Points V;
+  std::vector<std::vector<Vec3>> disp;  // [target][vertex]
+};
+
+/// Raw vertex -> kept vertex: remap[i] is the raw vertex i is welded to (itself when kept),
+/// compact[i] the index of a kept raw vertex in the model (-1 for welded ones).
+struct Welding {
+  std::vector<Index> remap;
+  std::vector<Index> compact;
+  Index kept = 0;
+};
+
 class Loader {
  public:
   Loader(std::string path, const tg::Model& g) : path_(std::move(path)), g_(g) {}
@@ -106,10 +142,41 @@ class Loader {
   void compute_world_matrices();
   Vec3 json_vec3(const json& j, const std::string& what) const;
 
+  // The steps of run(), in order.
+  void select_mesh_node();
+  void read_breastfit_extras();
+  RawMesh read_primitives() const;
+  void read_primitive(size_t pi, RawMesh& raw) const;
+  void read_faces(const tg::Primitive& prim, const std::string& pw, size_t base, size_t n, RawMesh& raw) const;
+  void read_skin_attributes(const tg::Primitive& prim, const std::string& pw, size_t base, size_t n,
+                            RawMesh& raw) const;
+  void read_morph_targets(const tg::Primitive& prim, const std::string& pw, size_t base, size_t n,
+                          RawMesh& raw) const;
+  Skeleton read_skeleton(std::vector<Influences>& influences) const;
+  void order_bones(Skeleton& sk) const;
+  void compute_skin_matrices(Skeleton& sk) const;
+  ModelFrameVertices to_model_frame(const RawMesh& raw, const Skeleton& sk) const;
+  Welding weld(const RawMesh& raw) const;
+  std::string model_name() const;
+  void add_bones(const Skeleton& sk, RiggedModel& model) const;
+  Bone joint_bone(int joint) const;
+  void add_weights(const RawMesh& raw, const Skeleton& sk, const Welding& w, RiggedModel& model) const;
+  void add_blendshapes(const ModelFrameVertices& mv, const Welding& w, RiggedModel& model) const;
+  void add_annotations(RiggedModel& model) const;
+  SurfacePoint surface_point(const json& face, const json& bary, const std::string& what) const;
+  json extras_array(const char* key) const;
+  std::string item_name(const json& item, const std::string& what) const;
+
   std::string path_;
   const tg::Model& g_;
   std::vector<int> parent_;
   std::vector<Mat4> world_;
+  // Set by select_mesh_node() and read_breastfit_extras().
+  int mesh_node_ = -1;
+  const tg::Mesh* mesh_ = nullptr;
+  const tg::Skin* skin_ = nullptr;
+  json mesh_extras_;
+  const json* bf_ = nullptr;  // mesh_extras_["breastfit"], or null
 };
 
 double read_component(const unsigned char* p, int component_type, bool normalized) {
@@ -280,212 +347,276 @@ Vec3 Loader::json_vec3(const json& j, const std::string& what) const {
   return Vec3(j[0].get<double>(), j[1].get<double>(), j[2].get<double>());
 }
 
-/// One vertex's skin influences (joint index within the skin, weight).
-using Influences = std::vector<std::pair<int, double>>;
-
 RiggedModel Loader::run() {
   compute_world_matrices();
+  select_mesh_node();
+  read_breastfit_extras();
+  RawMesh raw = read_primitives();
+  const Skeleton sk = read_skeleton(raw.influences);
+  const ModelFrameVertices mv = to_model_frame(raw, sk);
+  const Welding w = weld(raw);
 
-  // The mesh node: first with mesh and skin, else first with a mesh.
-  int mesh_node = -1;
-  for (size_t i = 0; i < g_.nodes.size() && mesh_node < 0; ++i)
-    if (g_.nodes[i].mesh >= 0 && g_.nodes[i].skin >= 0) mesh_node = static_cast<int>(i);
-  for (size_t i = 0; i < g_.nodes.size() && mesh_node < 0; ++i)
-    if (g_.nodes[i].mesh >= 0) mesh_node = static_cast<int>(i);
-  if (mesh_node < 0) fail("no node with a mesh");
-  const tg::Node& node = g_.nodes[mesh_node];
+  RiggedModel model;
+  model.rest.V.resize(w.kept, 3);
+  for (size_t i = 0; i < raw.positions.size(); ++i)
+    if (w.compact[i] >= 0) model.rest.V.row(w.compact[i]) = mv.V.row(static_cast<Index>(i));
+  model.rest.F.resize(static_cast<Index>(raw.faces.size()), 3);
+  for (size_t f = 0; f < raw.faces.size(); ++f)
+    for (int c = 0; c < 3; ++c) model.rest.F(static_cast<Index>(f), c) = w.compact[w.remap[raw.faces[f][c]]];
+  model.name = model_name();
+  add_bones(sk, model);
+  add_weights(raw, sk, w, model);
+  add_blendshapes(mv, w, model);
+  if (bf_) add_annotations(model);
+
+  try {
+    model.validate();
+  } catch (const InvalidInput& e) {
+    fail(e.what());
+  }
+  return model;
+}
+
+/// The mesh node: first with mesh and skin, else first with a mesh; its mesh and skin checked.
+void Loader::select_mesh_node() {
+  for (size_t i = 0; i < g_.nodes.size() && mesh_node_ < 0; ++i)
+    if (g_.nodes[i].mesh >= 0 && g_.nodes[i].skin >= 0) mesh_node_ = static_cast<int>(i);
+  for (size_t i = 0; i < g_.nodes.size() && mesh_node_ < 0; ++i)
+    if (g_.nodes[i].mesh >= 0) mesh_node_ = static_cast<int>(i);
+  if (mesh_node_ < 0) fail("no node with a mesh");
+  const tg::Node& node = g_.nodes[mesh_node_];
   if (node.mesh >= static_cast<int>(g_.meshes.size())) fail("mesh index out of range");
-  const tg::Mesh& mesh = g_.meshes[node.mesh];
-  const tg::Skin* skin = nullptr;
+  mesh_ = &g_.meshes[node.mesh];
   if (node.skin >= 0) {
     if (node.skin >= static_cast<int>(g_.skins.size())) fail("skin index out of range");
-    skin = &g_.skins[node.skin];
-    if (skin->joints.empty()) fail("the skin has no joints");
-    for (int jn : skin->joints)
+    skin_ = &g_.skins[node.skin];
+    if (skin_->joints.empty()) fail("the skin has no joints");
+    for (int jn : skin_->joints)
       if (jn < 0 || jn >= static_cast<int>(g_.nodes.size())) fail("skin joint index out of range");
   }
-  const json mesh_extras = to_json(mesh.extras);
-  const json* bf = nullptr;
-  if (mesh_extras.is_object() && mesh_extras.contains("breastfit")) {
-    bf = &mesh_extras["breastfit"];
-    if (!bf->is_object()) fail("mesh.extras.breastfit must be an object");
-    if (bf->contains("version") && (!(*bf)["version"].is_number_integer() || (*bf)["version"].get<int>() > kFormatVersion))
+}
+
+/// mesh.extras, and its "breastfit" object (a file written by save_gltf) with a supported version.
+void Loader::read_breastfit_extras() {
+  mesh_extras_ = to_json(mesh_->extras);
+  if (mesh_extras_.is_object() && mesh_extras_.contains("breastfit")) {
+    bf_ = &mesh_extras_["breastfit"];
+    if (!bf_->is_object()) fail("mesh.extras.breastfit must be an object");
+    if (bf_->contains("version") &&
+        (!(*bf_)["version"].is_number_integer() || (*bf_)["version"].get<int>() > kFormatVersion))
       fail("mesh.extras.breastfit.version is not supported by this breastfit (max " + std::to_string(kFormatVersion) +
            ")");
   }
+}
 
-  // ---- primitives ------------------------------------------------------------------------
-  std::vector<Vec3> positions;
-  std::vector<Eigen::Vector3i> faces;
-  std::vector<Influences> influences;
-  std::vector<std::vector<Vec3>> morphs;  // [target][vertex]
-  int num_targets = -1;
-  for (size_t pi = 0; pi < mesh.primitives.size(); ++pi) {
-    const tg::Primitive& prim = mesh.primitives[pi];
-    if (prim.mode != -1 && prim.mode != TINYGLTF_MODE_TRIANGLES) continue;
-    const std::string pw = "primitive " + std::to_string(pi);
-    const auto pos_it = prim.attributes.find("POSITION");
-    if (pos_it == prim.attributes.end()) fail(pw + " has no POSITION attribute");
-    const AccessorData pos = read_accessor(pos_it->second, TINYGLTF_TYPE_VEC3, pw + " POSITION");
-    const size_t n = pos.count;
-    const size_t base = positions.size();
-    for (size_t i = 0; i < n; ++i) positions.emplace_back(pos.at(i, 0), pos.at(i, 1), pos.at(i, 2));
+/// All triangle primitives, concatenated.
+RawMesh Loader::read_primitives() const {
+  RawMesh raw;
+  for (size_t pi = 0; pi < mesh_->primitives.size(); ++pi) read_primitive(pi, raw);
+  if (raw.faces.empty()) fail("the mesh has no triangles");
+  if (raw.num_targets < 0) raw.num_targets = 0;
+  return raw;
+}
 
-    if (prim.indices >= 0) {
-      const AccessorData idx = read_accessor(prim.indices, TINYGLTF_TYPE_SCALAR, pw + " indices");
-      if (idx.count % 3 != 0) fail(pw + ": index count " + std::to_string(idx.count) + " is not a multiple of 3");
-      for (size_t t = 0; t < idx.count / 3; ++t) {
-        Eigen::Vector3i f;
-        for (int c = 0; c < 3; ++c) {
-          const double v = idx.values[3 * t + c];
-          if (v < 0 || v >= static_cast<double>(n) || v != std::floor(v))
-            fail(pw + ": index " + std::to_string(static_cast<long long>(v)) + " out of range [0, " +
-                 std::to_string(n) + ")");
-          f[c] = static_cast<int>(base + static_cast<size_t>(v));
-        }
-        faces.push_back(f);
+void Loader::read_primitive(size_t pi, RawMesh& raw) const {
+  const tg::Primitive& prim = mesh_->primitives[pi];
+  if (prim.mode != -1 && prim.mode != TINYGLTF_MODE_TRIANGLES) return;
+  const std::string pw = "primitive " + std::to_string(pi);
+  const auto pos_it = prim.attributes.find("POSITION");
+  if (pos_it == prim.attributes.end()) fail(pw + " has no POSITION attribute");
+  const AccessorData pos = read_accessor(pos_it->second, TINYGLTF_TYPE_VEC3, pw + " POSITION");
+  const size_t n = pos.count;
+  const size_t base = raw.positions.size();
+  for (size_t i = 0; i < n; ++i) raw.positions.emplace_back(pos.at(i, 0), pos.at(i, 1), pos.at(i, 2));
+  read_faces(prim, pw, base, n, raw);
+  raw.influences.resize(base + n);
+  if (skin_) read_skin_attributes(prim, pw, base, n, raw);
+  read_morph_targets(prim, pw, base, n, raw);
+}
+
+/// The primitive's triangles (indexed or not), offset by `base`, the primitive's first vertex.
+void Loader::read_faces(const tg::Primitive& prim, const std::string& pw, size_t base, size_t n,
+                        RawMesh& raw) const {
+  if (prim.indices >= 0) {
+    const AccessorData idx = read_accessor(prim.indices, TINYGLTF_TYPE_SCALAR, pw + " indices");
+    if (idx.count % 3 != 0) fail(pw + ": index count " + std::to_string(idx.count) + " is not a multiple of 3");
+    for (size_t t = 0; t < idx.count / 3; ++t) {
+      Eigen::Vector3i f;
+      for (int c = 0; c < 3; ++c) {
+        const double v = idx.values[3 * t + c];
+        if (v < 0 || v >= static_cast<double>(n) || v != std::floor(v))
+          fail(pw + ": index " + std::to_string(static_cast<long long>(v)) + " out of range [0, " +
+               std::to_string(n) + ")");
+        f[c] = static_cast<int>(base + static_cast<size_t>(v));
       }
-    } else {
-      if (n % 3 != 0) fail(pw + ": non-indexed vertex count is not a multiple of 3");
-      for (size_t t = 0; t < n / 3; ++t)
-        faces.emplace_back(static_cast<int>(base + 3 * t), static_cast<int>(base + 3 * t + 1),
-                           static_cast<int>(base + 3 * t + 2));
+      raw.faces.push_back(f);
     }
+  } else {
+    if (n % 3 != 0) fail(pw + ": non-indexed vertex count is not a multiple of 3");
+    for (size_t t = 0; t < n / 3; ++t)
+      raw.faces.emplace_back(static_cast<int>(base + 3 * t), static_cast<int>(base + 3 * t + 1),
+                             static_cast<int>(base + 3 * t + 2));
+  }
+}
 
-    influences.resize(base + n);
-    if (skin) {
-      for (int set = 0; set < kMaxInfluences / 4; ++set) {
-        const auto jit = prim.attributes.find("JOINTS_" + std::to_string(set));
-        const auto wit = prim.attributes.find("WEIGHTS_" + std::to_string(set));
-        if (jit == prim.attributes.end() && wit == prim.attributes.end()) continue;
-        if (jit == prim.attributes.end() || wit == prim.attributes.end())
-          fail(pw + ": JOINTS_" + std::to_string(set) + " and WEIGHTS_" + std::to_string(set) + " must come together");
-        const AccessorData J = read_accessor(jit->second, TINYGLTF_TYPE_VEC4, pw + " JOINTS_" + std::to_string(set));
-        const AccessorData W = read_accessor(wit->second, TINYGLTF_TYPE_VEC4, pw + " WEIGHTS_" + std::to_string(set));
-        if (J.count != n || W.count != n) fail(pw + ": skin attribute count differs from POSITION count");
-        for (size_t i = 0; i < n; ++i) {
-          for (int c = 0; c < 4; ++c) {
-            const double w = W.at(i, c);
-            if (w < 0) fail(pw + ": negative skin weight at vertex " + std::to_string(i));
-            if (w == 0) continue;
-            const double j = J.at(i, c);
-            if (j < 0 || j >= static_cast<double>(skin->joints.size()))
-              fail(pw + ": joint index " + std::to_string(static_cast<long long>(j)) + " out of range");
-            influences[base + i].emplace_back(static_cast<int>(j), w);
-          }
-        }
+/// JOINTS_k / WEIGHTS_k (k < 2) of the primitive: the non-zero influences of its vertices.
+void Loader::read_skin_attributes(const tg::Primitive& prim, const std::string& pw, size_t base, size_t n,
+                                  RawMesh& raw) const {
+  for (int set = 0; set < kMaxInfluences / 4; ++set) {
+    const auto jit = prim.attributes.find("JOINTS_" + std::to_string(set));
+    const auto wit = prim.attributes.find("WEIGHTS_" + std::to_string(set));
+    if (jit == prim.attributes.end() && wit == prim.attributes.end()) continue;
+    if (jit == prim.attributes.end() || wit == prim.attributes.end())
+      fail(pw + ": JOINTS_" + std::to_string(set) + " and WEIGHTS_" + std::to_string(set) + " must come together");
+    const AccessorData J = read_accessor(jit->second, TINYGLTF_TYPE_VEC4, pw + " JOINTS_" + std::to_string(set));
+    const AccessorData W = read_accessor(wit->second, TINYGLTF_TYPE_VEC4, pw + " WEIGHTS_" + std::to_string(set));
+    if (J.count != n || W.count != n) fail(pw + ": skin attribute count differs from POSITION count");
+    for (size_t i = 0; i < n; ++i) {
+      for (int c = 0; c < 4; ++c) {
+        const double w = W.at(i, c);
+        if (w < 0) fail(pw + ": negative skin weight at vertex " + std::to_string(i));
+        if (w == 0) continue;
+        const double j = J.at(i, c);
+        if (j < 0 || j >= static_cast<double>(skin_->joints.size()))
+          fail(pw + ": joint index " + std::to_string(static_cast<long long>(j)) + " out of range");
+        raw.influences[base + i].emplace_back(static_cast<int>(j), w);
       }
-    }
-
-    const int nt = static_cast<int>(prim.targets.size());
-    if (num_targets < 0) {
-      num_targets = nt;
-      morphs.assign(nt, {});
-    } else if (nt != num_targets) {
-      fail(pw + " has " + std::to_string(nt) + " morph targets, the first primitive " + std::to_string(num_targets));
-    }
-    for (int k = 0; k < nt; ++k) {
-      morphs[k].resize(base + n, Vec3::Zero());
-      const auto it = prim.targets[k].find("POSITION");
-      if (it == prim.targets[k].end()) continue;
-      const AccessorData D =
-          read_accessor(it->second, TINYGLTF_TYPE_VEC3, pw + " morph target " + std::to_string(k) + " POSITION");
-      if (D.count != n) fail(pw + ": morph target " + std::to_string(k) + " count differs from POSITION count");
-      for (size_t i = 0; i < n; ++i) morphs[k][base + i] = Vec3(D.at(i, 0), D.at(i, 1), D.at(i, 2));
     }
   }
-  if (faces.empty()) fail("the mesh has no triangles");
-  if (num_targets < 0) num_targets = 0;
-  const size_t nv = positions.size();
+}
 
-  // ---- bones ------------------------------------------------------------------------------
-  std::vector<int> bone_joint;     // bone -> joint index in skin
-  std::vector<int> joint_bone;     // joint index -> bone
-  std::vector<int> bone_parent;    // bone -> parent bone or -1
-  std::vector<Mat4> skin_matrix;   // per joint: world_j · IBM_j
-  bool bind_is_identity = true;
-  if (skin) {
-    const int nj = static_cast<int>(skin->joints.size());
-    std::map<int, int> node_joint;
-    for (int j = 0; j < nj; ++j)
-      if (!node_joint.emplace(skin->joints[j], j).second) fail("the skin lists a joint node twice");
-    std::vector<int> joint_parent(nj, -1);
-    for (int j = 0; j < nj; ++j) {
-      for (int a = parent_[skin->joints[j]]; a >= 0; a = parent_[a]) {
-        const auto it = node_joint.find(a);
-        if (it != node_joint.end()) {
-          joint_parent[j] = it->second;
-          break;
-        }
-      }
+/// The primitive's morph target POSITION displacements (every primitive has as many targets as
+/// the first one).
+void Loader::read_morph_targets(const tg::Primitive& prim, const std::string& pw, size_t base, size_t n,
+                                RawMesh& raw) const {
+  const int nt = static_cast<int>(prim.targets.size());
+  if (raw.num_targets < 0) {
+    raw.num_targets = nt;
+    raw.morphs.assign(nt, {});
+  } else if (nt != raw.num_targets) {
+    fail(pw + " has " + std::to_string(nt) + " morph targets, the first primitive " + std::to_string(raw.num_targets));
+  }
+  for (int k = 0; k < nt; ++k) {
+    raw.morphs[k].resize(base + n, Vec3::Zero());
+    const auto it = prim.targets[k].find("POSITION");
+    if (it == prim.targets[k].end()) continue;
+    const AccessorData D =
+        read_accessor(it->second, TINYGLTF_TYPE_VEC3, pw + " morph target " + std::to_string(k) + " POSITION");
+    if (D.count != n) fail(pw + ": morph target " + std::to_string(k) + " count differs from POSITION count");
+    for (size_t i = 0; i < n; ++i) raw.morphs[k][base + i] = Vec3(D.at(i, 0), D.at(i, 1), D.at(i, 2));
+  }
+}
+
+/// The bones and bind matrices of the skin, and the influences merged per joint and normalised
+/// (unweighted vertices go to the first root bone). Without a skin: one root bone at the mesh
+/// node, every vertex bound to it.
+Skeleton Loader::read_skeleton(std::vector<Influences>& influences) const {
+  Skeleton sk;
+  if (!skin_) {
+    sk.bone_joint = {0};
+    sk.joint_bone = {0};
+    sk.bone_parent = {-1};
+    for (auto& inf : influences) inf = {{0, 1.0}};
+    sk.skin_matrix = {world_[mesh_node_]};
+    sk.bind_is_identity = (world_[mesh_node_] - Mat4::Identity()).cwiseAbs().maxCoeff() <= 1e-12;
+    return sk;
+  }
+  order_bones(sk);
+  compute_skin_matrices(sk);
+  for (auto& inf : influences) {
+    std::map<int, double> merged;
+    for (const auto& [j, w] : inf) merged[j] += w;
+    inf.assign(merged.begin(), merged.end());
+    double sum = 0;
+    for (const auto& [j, w] : inf) sum += w;
+    if (sum <= 0) {
+      inf = {{sk.bone_joint[0], 1.0}};
+      continue;
     }
-    // Parents first, otherwise in skin order.
-    joint_bone.assign(nj, -1);
-    while (static_cast<int>(bone_joint.size()) < nj) {
-      for (int j = 0; j < nj; ++j) {
-        if (joint_bone[j] >= 0) continue;
-        if (joint_parent[j] >= 0 && joint_bone[joint_parent[j]] < 0) continue;
-        joint_bone[j] = static_cast<int>(bone_joint.size());
-        bone_joint.push_back(j);
-        bone_parent.push_back(joint_parent[j] >= 0 ? joint_bone[joint_parent[j]] : -1);
+    for (auto& [j, w] : inf) w /= sum;
+  }
+  return sk;
+}
+
+/// Bones from the skin's joints: parents (the nearest ancestor node that is a joint) first,
+/// otherwise in skin order.
+void Loader::order_bones(Skeleton& sk) const {
+  const int nj = static_cast<int>(skin_->joints.size());
+  std::map<int, int> node_joint;
+  for (int j = 0; j < nj; ++j)
+    if (!node_joint.emplace(skin_->joints[j], j).second) fail("the skin lists a joint node twice");
+  std::vector<int> joint_parent(nj, -1);
+  for (int j = 0; j < nj; ++j) {
+    for (int a = parent_[skin_->joints[j]]; a >= 0; a = parent_[a]) {
+      const auto it = node_joint.find(a);
+      if (it != node_joint.end()) {
+        joint_parent[j] = it->second;
         break;
       }
     }
-    std::vector<Mat4> ibm(nj, Mat4::Identity());
-    if (skin->inverseBindMatrices >= 0) {
-      const AccessorData M = read_accessor(skin->inverseBindMatrices, TINYGLTF_TYPE_MAT4, "inverseBindMatrices");
-      if (static_cast<int>(M.count) < nj) fail("inverseBindMatrices has fewer matrices than joints");
-      for (int j = 0; j < nj; ++j)
-        for (int c = 0; c < 4; ++c)
-          for (int r = 0; r < 4; ++r) ibm[j](r, c) = M.at(j, 4 * c + r);
-    }
-    skin_matrix.resize(nj);
-    for (int j = 0; j < nj; ++j) {
-      skin_matrix[j] = world_[skin->joints[j]] * ibm[j];
-      if ((skin_matrix[j] - Mat4::Identity()).cwiseAbs().maxCoeff() > 1e-5) bind_is_identity = false;
-    }
-    // Normalise weights; unweighted vertices go to the first root bone.
-    for (auto& inf : influences) {
-      std::map<int, double> merged;
-      for (const auto& [j, w] : inf) merged[j] += w;
-      inf.assign(merged.begin(), merged.end());
-      double sum = 0;
-      for (const auto& [j, w] : inf) sum += w;
-      if (sum <= 0) {
-        inf = {{bone_joint[0], 1.0}};
-        continue;
-      }
-      for (auto& [j, w] : inf) w /= sum;
-    }
-  } else {
-    bone_joint = {0};
-    joint_bone = {0};
-    bone_parent = {-1};
-    for (auto& inf : influences) inf = {{0, 1.0}};
-    skin_matrix = {world_[mesh_node]};
-    bind_is_identity = (world_[mesh_node] - Mat4::Identity()).cwiseAbs().maxCoeff() <= 1e-12;
   }
+  sk.joint_bone.assign(nj, -1);
+  while (static_cast<int>(sk.bone_joint.size()) < nj) {
+    for (int j = 0; j < nj; ++j) {
+      if (sk.joint_bone[j] >= 0) continue;
+      if (joint_parent[j] >= 0 && sk.joint_bone[joint_parent[j]] < 0) continue;
+      sk.joint_bone[j] = static_cast<int>(sk.bone_joint.size());
+      sk.bone_joint.push_back(j);
+      sk.bone_parent.push_back(joint_parent[j] >= 0 ? sk.joint_bone[joint_parent[j]] : -1);
+      break;
+    }
+  }
+}
 
-  // ---- rest positions and displacements in the model frame ----------------------------------
-  Points V(static_cast<Index>(nv), 3);
-  std::vector<std::vector<Vec3>> disp(num_targets, std::vector<Vec3>(nv));
+/// world_j · IBM_j per joint, and whether they are all the identity (the file's vertices are
+/// then already in the bind pose).
+void Loader::compute_skin_matrices(Skeleton& sk) const {
+  const int nj = static_cast<int>(skin_->joints.size());
+  std::vector<Mat4> ibm(nj, Mat4::Identity());
+  if (skin_->inverseBindMatrices >= 0) {
+    const AccessorData M = read_accessor(skin_->inverseBindMatrices, TINYGLTF_TYPE_MAT4, "inverseBindMatrices");
+    if (static_cast<int>(M.count) < nj) fail("inverseBindMatrices has fewer matrices than joints");
+    for (int j = 0; j < nj; ++j)
+      for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r) ibm[j](r, c) = M.at(j, 4 * c + r);
+  }
+  sk.skin_matrix.resize(nj);
+  for (int j = 0; j < nj; ++j) {
+    sk.skin_matrix[j] = world_[skin_->joints[j]] * ibm[j];
+    if ((sk.skin_matrix[j] - Mat4::Identity()).cwiseAbs().maxCoeff() > 1e-5) sk.bind_is_identity = false;
+  }
+}
+
+/// Rest positions and displacements in the model frame (skinned to the bind pose when the
+/// bind matrices are not the identity).
+ModelFrameVertices Loader::to_model_frame(const RawMesh& raw, const Skeleton& sk) const {
+  const size_t nv = raw.positions.size();
+  ModelFrameVertices mv;
+  mv.V.resize(static_cast<Index>(nv), 3);
+  mv.disp.assign(raw.num_targets, std::vector<Vec3>(nv));
   for (size_t i = 0; i < nv; ++i) {
-    Vec3 p = positions[i];
+    Vec3 p = raw.positions[i];
     Mat3 lin = Mat3::Identity();
-    if (!bind_is_identity) {
+    if (!sk.bind_is_identity) {
       Mat4 S = Mat4::Zero();
-      for (const auto& [j, w] : influences[i]) S += w * skin_matrix[j];
+      for (const auto& [j, w] : raw.influences[i]) S += w * sk.skin_matrix[j];
       p = S.topLeftCorner<3, 3>() * p + S.topRightCorner<3, 1>();
       lin = S.topLeftCorner<3, 3>();
     }
-    V.row(static_cast<Index>(i)) = gltf_to_model(p).transpose();
-    for (int k = 0; k < num_targets; ++k) disp[k][i] = gltf_to_model(lin * morphs[k][i]);
+    mv.V.row(static_cast<Index>(i)) = gltf_to_model(p).transpose();
+    for (int k = 0; k < raw.num_targets; ++k) mv.disp[k][i] = gltf_to_model(lin * raw.morphs[k][i]);
   }
+  return mv;
+}
 
-  // ---- weld bit-identical duplicates (foreign files only) ----------------------------------
-  std::vector<Index> remap(nv);
-  for (size_t i = 0; i < nv; ++i) remap[i] = static_cast<Index>(i);
-  if (!bf) {
+/// Welds bit-identical duplicates (same float position, influences and morph displacements) of
+/// foreign files; files with breastfit extras keep every vertex.
+Welding Loader::weld(const RawMesh& raw) const {
+  const size_t nv = raw.positions.size();
+  Welding w;
+  w.remap.resize(nv);
+  for (size_t i = 0; i < nv; ++i) w.remap[i] = static_cast<Index>(i);
+  if (!bf_) {
     struct Key {
       float x, y, z;
       bool operator==(const Key& o) const { return x == o.x && y == o.y && z == o.z; }
@@ -502,15 +633,15 @@ RiggedModel Loader::run() {
     };
     std::unordered_map<Key, std::vector<size_t>, KeyHash> buckets;
     for (size_t i = 0; i < nv; ++i) {
-      const Key key{static_cast<float>(positions[i].x()), static_cast<float>(positions[i].y()),
-                    static_cast<float>(positions[i].z())};
+      const Key key{static_cast<float>(raw.positions[i].x()), static_cast<float>(raw.positions[i].y()),
+                    static_cast<float>(raw.positions[i].z())};
       auto& list = buckets[key];
       bool merged = false;
       for (size_t r : list) {
-        bool same = influences[r] == influences[i];
-        for (int k = 0; same && k < num_targets; ++k) same = morphs[k][r] == morphs[k][i];
+        bool same = raw.influences[r] == raw.influences[i];
+        for (int k = 0; same && k < raw.num_targets; ++k) same = raw.morphs[k][r] == raw.morphs[k][i];
         if (same) {
-          remap[i] = static_cast<Index>(r);
+          w.remap[i] = static_cast<Index>(r);
           merged = true;
           break;
         }
@@ -518,87 +649,100 @@ RiggedModel Loader::run() {
       if (!merged) list.push_back(i);
     }
   }
-  std::vector<Index> compact(nv, -1);
-  Index kept = 0;
+  w.compact.assign(nv, -1);
   for (size_t i = 0; i < nv; ++i)
-    if (remap[i] == static_cast<Index>(i)) compact[i] = kept++;
+    if (w.remap[i] == static_cast<Index>(i)) w.compact[i] = w.kept++;
+  return w;
+}
 
-  RiggedModel model;
-  model.rest.V.resize(kept, 3);
-  for (size_t i = 0; i < nv; ++i)
-    if (compact[i] >= 0) model.rest.V.row(compact[i]) = V.row(static_cast<Index>(i));
-  model.rest.F.resize(static_cast<Index>(faces.size()), 3);
-  for (size_t f = 0; f < faces.size(); ++f)
-    for (int c = 0; c < 3; ++c) model.rest.F(static_cast<Index>(f), c) = compact[remap[faces[f][c]]];
+/// extras.breastfit.name, else the mesh's, the node's or the file's name.
+std::string Loader::model_name() const {
+  if (bf_ && bf_->contains("name") && (*bf_)["name"].is_string()) return (*bf_)["name"].get<std::string>();
+  if (!mesh_->name.empty()) return mesh_->name;
+  const tg::Node& node = g_.nodes[mesh_node_];
+  if (!node.name.empty()) return node.name;
+  return std::filesystem::path(path_).stem().string();
+}
 
-  // ---- name ------------------------------------------------------------------------------
-  if (bf && bf->contains("name") && (*bf)["name"].is_string()) model.name = (*bf)["name"].get<std::string>();
-  else if (!mesh.name.empty()) model.name = mesh.name;
-  else if (!node.name.empty()) model.name = node.name;
-  else model.name = std::filesystem::path(path_).stem().string();
+/// Appends `name`, or name_2, name_3, ... when it is taken, to `used`; returns what was added.
+std::string unique_name(const std::string& name, std::set<std::string>& used) {
+  std::string unique = name;
+  for (int s = 2; !used.insert(unique).second; ++s) unique = name + "_" + std::to_string(s);
+  return unique;
+}
 
-  // ---- bones -----------------------------------------------------------------------------
-  const int nb = static_cast<int>(bone_joint.size());
+void Loader::add_bones(const Skeleton& sk, RiggedModel& model) const {
+  const int nb = static_cast<int>(sk.bone_joint.size());
   std::set<std::string> used_names;
   for (int b = 0; b < nb; ++b) {
     Bone bone;
-    if (skin) {
-      const int jn = skin->joints[bone_joint[b]];
-      bone.name = g_.nodes[jn].name.empty() ? "joint" + std::to_string(bone_joint[b]) : g_.nodes[jn].name;
-      bone.pivot = gltf_to_model(world_[jn].topRightCorner<3, 1>());
-      const json ex = to_json(g_.nodes[jn].extras);
-      if (ex.is_object() && ex.contains("breastfit")) {
-        const json& e = ex["breastfit"];
-        const std::string w = "joint '" + bone.name + "' extras.breastfit";
-        if (!e.is_object()) fail(w + " must be an object");
-        if (e.contains("pivot")) bone.pivot = json_vec3(e["pivot"], w + ".pivot");
-        if (e.contains("axes")) {
-          const json& ax = e["axes"];
-          if (!ax.is_array() || ax.size() != 3) fail(w + ".axes must be an array of 3 axis vectors");
-          for (int c = 0; c < 3; ++c) bone.axes.col(c) = json_vec3(ax[c], w + ".axes[" + std::to_string(c) + "]");
-        }
-        if (e.contains("scale_lo")) bone.scale_lo = json_vec3(e["scale_lo"], w + ".scale_lo");
-        if (e.contains("scale_hi")) bone.scale_hi = json_vec3(e["scale_hi"], w + ".scale_hi");
-        if (e.contains("scale_stiffness"))
-          bone.scale_stiffness = json_vec3(e["scale_stiffness"], w + ".scale_stiffness");
-      }
+    if (skin_) {
+      bone = joint_bone(sk.bone_joint[b]);
     } else {
       bone.name = "root";
       bone.pivot = model.rest.V.colwise().mean().transpose();
     }
-    std::string unique = bone.name;
-    for (int s = 2; !used_names.insert(unique).second; ++s) unique = bone.name + "_" + std::to_string(s);
-    bone.name = unique;
-    if (bone_parent[b] >= 0) bone.parent = bone_parent[b];
+    bone.name = unique_name(bone.name, used_names);
+    if (sk.bone_parent[b] >= 0) bone.parent = sk.bone_parent[b];
     model.bones.push_back(bone);
   }
-  std::vector<Eigen::Triplet<double, Index>> trips;
-  for (size_t i = 0; i < nv; ++i) {
-    if (compact[i] < 0) continue;
-    for (const auto& [j, w] : influences[i]) trips.emplace_back(compact[i], joint_bone[j], w);
+}
+
+/// The bone of one skin joint: its node's name and world position, overridden by the joint
+/// node's extras.breastfit (pivot, axes, scale bounds and stiffness).
+Bone Loader::joint_bone(int joint) const {
+  Bone bone;
+  const int jn = skin_->joints[joint];
+  bone.name = g_.nodes[jn].name.empty() ? "joint" + std::to_string(joint) : g_.nodes[jn].name;
+  bone.pivot = gltf_to_model(world_[jn].topRightCorner<3, 1>());
+  const json ex = to_json(g_.nodes[jn].extras);
+  if (!ex.is_object() || !ex.contains("breastfit")) return bone;
+  const json& e = ex["breastfit"];
+  const std::string w = "joint '" + bone.name + "' extras.breastfit";
+  if (!e.is_object()) fail(w + " must be an object");
+  if (e.contains("pivot")) bone.pivot = json_vec3(e["pivot"], w + ".pivot");
+  if (e.contains("axes")) {
+    const json& ax = e["axes"];
+    if (!ax.is_array() || ax.size() != 3) fail(w + ".axes must be an array of 3 axis vectors");
+    for (int c = 0; c < 3; ++c) bone.axes.col(c) = json_vec3(ax[c], w + ".axes[" + std::to_string(c) + "]");
   }
-  model.weights.resize(kept, nb);
+  if (e.contains("scale_lo")) bone.scale_lo = json_vec3(e["scale_lo"], w + ".scale_lo");
+  if (e.contains("scale_hi")) bone.scale_hi = json_vec3(e["scale_hi"], w + ".scale_hi");
+  if (e.contains("scale_stiffness")) bone.scale_stiffness = json_vec3(e["scale_stiffness"], w + ".scale_stiffness");
+  return bone;
+}
+
+void Loader::add_weights(const RawMesh& raw, const Skeleton& sk, const Welding& w, RiggedModel& model) const {
+  std::vector<Eigen::Triplet<double, Index>> trips;
+  for (size_t i = 0; i < raw.positions.size(); ++i) {
+    if (w.compact[i] < 0) continue;
+    for (const auto& [j, wt] : raw.influences[i]) trips.emplace_back(w.compact[i], sk.joint_bone[j], wt);
+  }
+  model.weights.resize(w.kept, static_cast<Index>(sk.bone_joint.size()));
   model.weights.setFromTriplets(trips.begin(), trips.end());
   model.weights.makeCompressed();
+}
 
-  // ---- blendshapes -------------------------------------------------------------------------
+/// One blendshape per morph target: named by mesh.extras.targetNames (else target_k, made
+/// unique), bounded by extras.breastfit.blendshape_bounds (else Blender's [0, 1]), with the
+/// kept vertices it moves.
+void Loader::add_blendshapes(const ModelFrameVertices& mv, const Welding& w, RiggedModel& model) const {
   std::vector<std::string> target_names;
-  if (mesh_extras.is_object() && mesh_extras.contains("targetNames") && mesh_extras["targetNames"].is_array()) {
-    for (const auto& n : mesh_extras["targetNames"]) target_names.push_back(n.is_string() ? n.get<std::string>() : "");
+  if (mesh_extras_.is_object() && mesh_extras_.contains("targetNames") && mesh_extras_["targetNames"].is_array()) {
+    for (const auto& n : mesh_extras_["targetNames"]) target_names.push_back(n.is_string() ? n.get<std::string>() : "");
   }
   json bounds = json::object();
-  if (bf && bf->contains("blendshape_bounds")) {
-    bounds = (*bf)["blendshape_bounds"];
+  if (bf_ && bf_->contains("blendshape_bounds")) {
+    bounds = (*bf_)["blendshape_bounds"];
     if (!bounds.is_object()) fail("mesh.extras.breastfit.blendshape_bounds must be an object");
   }
-  used_names.clear();
-  for (int k = 0; k < num_targets; ++k) {
+  std::set<std::string> used_names;
+  const size_t nv = w.compact.size();
+  for (size_t k = 0; k < mv.disp.size(); ++k) {
     Blendshape s;
-    s.name = (k < static_cast<int>(target_names.size()) && !target_names[k].empty()) ? target_names[k]
-                                                                                     : "target_" + std::to_string(k);
-    std::string unique = s.name;
-    for (int t = 2; !used_names.insert(unique).second; ++t) unique = s.name + "_" + std::to_string(t);
-    s.name = unique;
+    s.name = unique_name((k < target_names.size() && !target_names[k].empty()) ? target_names[k]
+                                                                              : "target_" + std::to_string(k),
+                         used_names);
     s.lo = kDefaultShapeLo;
     s.hi = kDefaultShapeHi;
     if (bounds.contains(s.name)) {
@@ -610,70 +754,67 @@ RiggedModel Loader::run() {
     }
     std::vector<Index> verts;
     for (size_t i = 0; i < nv; ++i)
-      if (compact[i] >= 0 && disp[k][i] != Vec3::Zero()) verts.push_back(compact[i]);
+      if (w.compact[i] >= 0 && mv.disp[k][i] != Vec3::Zero()) verts.push_back(w.compact[i]);
     s.vertices = verts;  // ascending: compact indices grow with i
     s.displacements.resize(static_cast<Index>(verts.size()), 3);
     Index r = 0;
     for (size_t i = 0; i < nv; ++i)
-      if (compact[i] >= 0 && disp[k][i] != Vec3::Zero()) s.displacements.row(r++) = disp[k][i].transpose();
+      if (w.compact[i] >= 0 && mv.disp[k][i] != Vec3::Zero()) s.displacements.row(r++) = mv.disp[k][i].transpose();
     model.blendshapes.push_back(std::move(s));
   }
+}
 
-  // ---- landmarks, drawings, regions ---------------------------------------------------------
-  if (bf) {
-    auto surface_point = [&](const json& face, const json& bary, const std::string& what) {
-      if (!face.is_number_integer()) fail(what + ": face must be an integer");
-      SurfacePoint p;
-      p.face = face.get<Index>();
-      p.bary = json_vec3(bary, what + ": bary");
-      return p;
-    };
-    auto array_of = [&](const char* key) -> json {
-      if (!bf->contains(key)) return json::array();
-      if (!(*bf)[key].is_array()) fail(std::string("mesh.extras.breastfit.") + key + " must be an array");
-      return (*bf)[key];
-    };
-    auto name_of = [&](const json& item, const std::string& what) {
-      if (!item.is_object() || !item.contains("name") || !item["name"].is_string())
-        fail(what + " must be an object with a string 'name'");
-      return item["name"].get<std::string>();
-    };
-    for (const json& l : array_of("landmarks")) {
-      ModelLandmark lm;
-      lm.name = name_of(l, "landmark");
-      if (!l.contains("face") || !l.contains("bary")) fail("landmark '" + lm.name + "' needs 'face' and 'bary'");
-      lm.point = surface_point(l["face"], l["bary"], "landmark '" + lm.name + "'");
-      model.landmarks.push_back(lm);
-    }
-    for (const json& d : array_of("drawings")) {
-      Drawing dr;
-      dr.name = name_of(d, "drawing");
-      dr.closed = d.value("closed", false);
-      if (!d.contains("points") || !d["points"].is_array()) fail("drawing '" + dr.name + "' needs 'points'");
-      for (const json& p : d["points"]) {
-        if (!p.is_array() || p.size() != 4) fail("drawing '" + dr.name + "': each point is [face, b0, b1, b2]");
-        dr.points.push_back(surface_point(p[0], json::array({p[1], p[2], p[3]}), "drawing '" + dr.name + "'"));
-      }
-      model.drawings.push_back(std::move(dr));
-    }
-    for (const json& r : array_of("regions")) {
-      VertexRegion reg;
-      reg.name = name_of(r, "region");
-      if (!r.contains("vertices") || !r["vertices"].is_array()) fail("region '" + reg.name + "' needs 'vertices'");
-      for (const json& v : r["vertices"]) {
-        if (!v.is_number_integer()) fail("region '" + reg.name + "': vertex indices must be integers");
-        reg.vertices.push_back(v.get<Index>());
-      }
-      model.regions.push_back(std::move(reg));
-    }
+/// Landmarks, drawings and regions of extras.breastfit.
+void Loader::add_annotations(RiggedModel& model) const {
+  for (const json& l : extras_array("landmarks")) {
+    ModelLandmark lm;
+    lm.name = item_name(l, "landmark");
+    if (!l.contains("face") || !l.contains("bary")) fail("landmark '" + lm.name + "' needs 'face' and 'bary'");
+    lm.point = surface_point(l["face"], l["bary"], "landmark '" + lm.name + "'");
+    model.landmarks.push_back(lm);
   }
+  for (const json& d : extras_array("drawings")) {
+    Drawing dr;
+    dr.name = item_name(d, "drawing");
+    dr.closed = d.value("closed", false);
+    if (!d.contains("points") || !d["points"].is_array()) fail("drawing '" + dr.name + "' needs 'points'");
+    for (const json& p : d["points"]) {
+      if (!p.is_array() || p.size() != 4) fail("drawing '" + dr.name + "': each point is [face, b0, b1, b2]");
+      dr.points.push_back(surface_point(p[0], json::array({p[1], p[2], p[3]}), "drawing '" + dr.name + "'"));
+    }
+    model.drawings.push_back(std::move(dr));
+  }
+  for (const json& r : extras_array("regions")) {
+    VertexRegion reg;
+    reg.name = item_name(r, "region");
+    if (!r.contains("vertices") || !r["vertices"].is_array()) fail("region '" + reg.name + "' needs 'vertices'");
+    for (const json& v : r["vertices"]) {
+      if (!v.is_number_integer()) fail("region '" + reg.name + "': vertex indices must be integers");
+      reg.vertices.push_back(v.get<Index>());
+    }
+    model.regions.push_back(std::move(reg));
+  }
+}
 
-  try {
-    model.validate();
-  } catch (const InvalidInput& e) {
-    fail(e.what());
-  }
-  return model;
+SurfacePoint Loader::surface_point(const json& face, const json& bary, const std::string& what) const {
+  if (!face.is_number_integer()) fail(what + ": face must be an integer");
+  SurfacePoint p;
+  p.face = face.get<Index>();
+  p.bary = json_vec3(bary, what + ": bary");
+  return p;
+}
+
+/// extras.breastfit[key] (an array), or an empty array when absent.
+json Loader::extras_array(const char* key) const {
+  if (!bf_->contains(key)) return json::array();
+  if (!(*bf_)[key].is_array()) fail(std::string("mesh.extras.breastfit.") + key + " must be an array");
+  return (*bf_)[key];
+}
+
+std::string Loader::item_name(const json& item, const std::string& what) const {
+  if (!item.is_object() || !item.contains("name") || !item["name"].is_string())
+    fail(what + " must be an object with a string 'name'");
+  return item["name"].get<std::string>();
 }
 
 // =============================================================================================
@@ -735,19 +876,183 @@ class BufferBuilder {
   std::vector<unsigned char> data_;
 };
 
-Points area_weighted_normals(const Points& V, const Triangles& F) {
-  Points N = Points::Zero(V.rows(), 3);
-  for (Index f = 0; f < F.rows(); ++f) {
-    const Vec3 a = V.row(F(f, 0)), b = V.row(F(f, 1)), c = V.row(F(f, 2));
-    const Vec3 n = (b - a).cross(c - a);
-    for (int k = 0; k < 3; ++k) N.row(F(f, k)) += n.transpose();
+/// Influences per vertex, strongest first (ties keep the bone order).
+/// \throws InvalidInput when a vertex has more than kMaxInfluences
+std::vector<Influences> influences_strongest_first(const RiggedModel& model) {
+  const Index nv = model.num_vertices();
+  std::vector<Influences> inf(nv);
+  for (Index i = 0; i < nv; ++i) {
+    for (SkinWeights::InnerIterator it(model.weights, i); it; ++it)
+      if (it.value() > 0) inf[i].emplace_back(static_cast<int>(it.col()), it.value());
+    if (static_cast<int>(inf[i].size()) > kMaxInfluences)
+      throw InvalidInput("save_gltf: vertex " + std::to_string(i) + " has " + std::to_string(inf[i].size()) +
+                         " skin influences, glTF export supports at most 8");
+    std::stable_sort(inf[i].begin(), inf[i].end(), [](const auto& a, const auto& b) { return a.second > b.second; });
   }
-  for (Index i = 0; i < N.rows(); ++i) {
-    const double len = N.row(i).norm();
-    if (len > 0) N.row(i) /= len;
-    else N.row(i) = Vec3::UnitZ().transpose();
+  return inf;
+}
+
+/// POSITION, NORMAL and the triangle indices of the rest mesh (glTF frame, float32). glTF
+/// wants unit normals everywhere: a vertex without one (a zero row of mesh::vertex_normals)
+/// gets the model's +Z.
+void add_geometry(const RiggedModel& model, BufferBuilder& bb, tg::Primitive& prim) {
+  const Index nv = model.num_vertices();
+  std::vector<float> pos(3 * nv), nrm(3 * nv);
+  const Points N = mesh::vertex_normals(model.rest.V, model.rest.F);
+  for (Index i = 0; i < nv; ++i) {
+    const Vec3 q = model_to_gltf(model.rest.V.row(i).transpose());
+    const Vec3 ni = N.row(i).squaredNorm() > 0 ? Vec3(N.row(i).transpose()) : Vec3::UnitZ();
+    const Vec3 n = model_to_gltf(ni).normalized();
+    for (int c = 0; c < 3; ++c) {
+      pos[3 * i + c] = static_cast<float>(q[c]);
+      nrm[3 * i + c] = static_cast<float>(n[c]);
+    }
   }
-  return N;
+  prim.attributes["POSITION"] = bb.add_vec3_floats(pos, TINYGLTF_TARGET_ARRAY_BUFFER);
+  prim.attributes["NORMAL"] = bb.add_vec3_floats(nrm, TINYGLTF_TARGET_ARRAY_BUFFER);
+  std::vector<uint32_t> idx(3 * model.rest.num_faces());
+  for (Index f = 0; f < model.rest.num_faces(); ++f)
+    for (int c = 0; c < 3; ++c) idx[3 * f + c] = static_cast<uint32_t>(model.rest.F(f, c));
+  const int view = bb.add_view(idx.data(), idx.size() * 4, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+  prim.indices = bb.add_accessor(view, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, idx.size(), TINYGLTF_TYPE_SCALAR);
+}
+
+/// JOINTS_k / WEIGHTS_k: one set per 4 influences (a second set when a vertex has more than 4).
+void add_skin_attributes(const std::vector<Influences>& inf, BufferBuilder& bb, tg::Primitive& prim) {
+  const Index nv = static_cast<Index>(inf.size());
+  int max_inf = 1;
+  for (const auto& v : inf) max_inf = std::max(max_inf, static_cast<int>(v.size()));
+  const int sets = max_inf > 4 ? 2 : 1;
+  for (int set = 0; set < sets; ++set) {
+    std::vector<uint16_t> joints(4 * nv, 0);
+    std::vector<float> weights(4 * nv, 0.0f);
+    for (Index i = 0; i < nv; ++i) {
+      for (int c = 0; c < 4; ++c) {
+        const size_t e = static_cast<size_t>(4 * set + c);
+        if (e >= inf[i].size()) break;
+        joints[4 * i + c] = static_cast<uint16_t>(inf[i][e].first);
+        weights[4 * i + c] = static_cast<float>(inf[i][e].second);
+      }
+    }
+    const int jv = bb.add_view(joints.data(), joints.size() * 2, TINYGLTF_TARGET_ARRAY_BUFFER);
+    prim.attributes["JOINTS_" + std::to_string(set)] =
+        bb.add_accessor(jv, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, nv, TINYGLTF_TYPE_VEC4);
+    const int wv = bb.add_view(weights.data(), weights.size() * 4, TINYGLTF_TARGET_ARRAY_BUFFER);
+    prim.attributes["WEIGHTS_" + std::to_string(set)] =
+        bb.add_accessor(wv, TINYGLTF_COMPONENT_TYPE_FLOAT, nv, TINYGLTF_TYPE_VEC4);
+  }
+}
+
+/// Morph targets: one sparse POSITION accessor per blendshape (glTF frame, float32).
+void add_morph_targets(const RiggedModel& model, tg::Model& g, BufferBuilder& bb, tg::Primitive& prim) {
+  for (const Blendshape& s : model.blendshapes) {
+    const size_t n = s.vertices.size();
+    std::vector<double> lo(3, 0.0), hi(3, 0.0);
+    std::vector<uint32_t> idx(n);
+    std::vector<float> val(3 * n);
+    for (size_t r = 0; r < n; ++r) {
+      idx[r] = static_cast<uint32_t>(s.vertices[r]);
+      const Vec3 d = model_to_gltf(s.displacements.row(static_cast<Index>(r)).transpose());
+      for (int c = 0; c < 3; ++c) {
+        val[3 * r + c] = static_cast<float>(d[c]);
+        lo[c] = std::min<double>(lo[c], val[3 * r + c]);
+        hi[c] = std::max<double>(hi[c], val[3 * r + c]);
+      }
+    }
+    const int acc = bb.add_accessor(-1, TINYGLTF_COMPONENT_TYPE_FLOAT, model.num_vertices(), TINYGLTF_TYPE_VEC3, lo, hi);
+    if (n > 0) {
+      tg::Accessor& a = g.accessors[acc];
+      a.sparse.isSparse = true;
+      a.sparse.count = static_cast<int>(n);
+      a.sparse.indices.bufferView = bb.add_view(idx.data(), n * 4, 0);
+      a.sparse.indices.byteOffset = 0;
+      a.sparse.indices.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+      a.sparse.values.bufferView = bb.add_view(val.data(), val.size() * 4, 0);
+      a.sparse.values.byteOffset = 0;
+    }
+    prim.targets.push_back({{"POSITION", acc}});
+  }
+}
+
+/// mesh.extras: the blendshape names (targetNames, as Blender reads them) and the breastfit
+/// object (format version, name, units, frame, blendshape bounds, landmarks, drawings, regions).
+json mesh_extras_json(const RiggedModel& model) {
+  json target_names = json::array();
+  json bounds = json::object();
+  for (const Blendshape& s : model.blendshapes) {
+    target_names.push_back(s.name);
+    bounds[s.name] = json::array({s.lo, s.hi});
+  }
+  json bf;
+  bf["version"] = kFormatVersion;
+  bf["name"] = model.name;
+  bf["units"] = "mm";
+  bf["frame"] = "LPS";
+  bf["blendshape_bounds"] = bounds;
+  bf["landmarks"] = json::array();
+  for (const auto& l : model.landmarks)
+    bf["landmarks"].push_back({{"name", l.name}, {"face", l.point.face}, {"bary", vec_json(l.point.bary)}});
+  bf["drawings"] = json::array();
+  for (const auto& d : model.drawings) {
+    json pts = json::array();
+    for (const auto& sp : d.points) pts.push_back(json::array({sp.face, sp.bary[0], sp.bary[1], sp.bary[2]}));
+    bf["drawings"].push_back({{"name", d.name}, {"closed", d.closed}, {"points", pts}});
+  }
+  bf["regions"] = json::array();
+  for (const auto& r : model.regions) bf["regions"].push_back({{"name", r.name}, {"vertices", r.vertices}});
+  return json{{"targetNames", target_names}, {"breastfit", bf}};
+}
+
+/// The joint node of bone j: translation from its parent's pivot (glTF frame) and the bone's
+/// model-frame data in extras.breastfit.
+tg::Node joint_node(const RiggedModel& model, int j) {
+  const Bone& b = model.bones[j];
+  tg::Node jn;
+  jn.name = b.name;
+  const Vec3 world = model_to_gltf(b.pivot);
+  const Vec3 local = b.parent ? Vec3(world - model_to_gltf(model.bones[*b.parent].pivot)) : world;
+  jn.translation = {local.x(), local.y(), local.z()};
+  json ex;
+  ex["pivot"] = vec_json(b.pivot);
+  ex["axes"] = json::array({vec_json(b.axes.col(0)), vec_json(b.axes.col(1)), vec_json(b.axes.col(2))});
+  ex["scale_lo"] = vec_json(b.scale_lo);
+  ex["scale_hi"] = vec_json(b.scale_hi);
+  if (b.scale_stiffness != Vec3::Ones()) ex["scale_stiffness"] = vec_json(b.scale_stiffness);
+  jn.extras = to_value(json{{"breastfit", ex}});
+  return jn;
+}
+
+/// Nodes 0 = mesh, 1 = Armature, 2.. = joints, and the skin (inverse bind matrices: translation
+/// by −pivot).
+void add_nodes_and_skin(const RiggedModel& model, tg::Model& g, BufferBuilder& bb) {
+  const int nb = model.num_bones();
+  tg::Node mesh_node;
+  mesh_node.name = model.name;
+  mesh_node.mesh = 0;
+  mesh_node.skin = 0;
+  g.nodes.push_back(mesh_node);
+  tg::Node armature;
+  armature.name = "Armature";
+  g.nodes.push_back(armature);
+  tg::Skin skin;
+  skin.name = "Armature";
+  std::vector<float> ibm(16 * nb, 0.0f);
+  for (int j = 0; j < nb; ++j) {
+    const Bone& b = model.bones[j];
+    g.nodes.push_back(joint_node(model, j));
+    const int node_index = 2 + j;
+    skin.joints.push_back(node_index);
+    if (b.parent) g.nodes[2 + *b.parent].children.push_back(node_index);
+    else g.nodes[1].children.push_back(node_index);
+    // Inverse bind matrix: translation by −pivot (column-major).
+    const Vec3 world = model_to_gltf(b.pivot);
+    for (int d = 0; d < 4; ++d) ibm[16 * j + 5 * d] = 1.0f;
+    for (int c = 0; c < 3; ++c) ibm[16 * j + 12 + c] = static_cast<float>(-world[c]);
+  }
+  const int view = bb.add_view(ibm.data(), ibm.size() * 4, 0);
+  skin.inverseBindMatrices = bb.add_accessor(view, TINYGLTF_COMPONENT_TYPE_FLOAT, nb, TINYGLTF_TYPE_MAT4);
+  skin.skeleton = 1;
+  g.skins.push_back(skin);
 }
 
 }  // namespace
@@ -786,167 +1091,24 @@ void save_gltf(const std::filesystem::path& path, const RiggedModel& model) {
   const std::string p = path.string();
   const std::string ext = lower_extension(path);
   if (ext != ".gltf" && ext != ".glb") throw IoError(p, "unsupported template extension '" + ext + "' (use .gltf or .glb)");
-  const Index nv = model.num_vertices();
-  const int nb = model.num_bones();
-
-  // Influences per vertex, strongest first.
-  std::vector<std::vector<std::pair<int, double>>> inf(nv);
-  for (Index i = 0; i < nv; ++i) {
-    for (SkinWeights::InnerIterator it(model.weights, i); it; ++it)
-      if (it.value() > 0) inf[i].emplace_back(static_cast<int>(it.col()), it.value());
-    if (static_cast<int>(inf[i].size()) > kMaxInfluences)
-      throw InvalidInput("save_gltf: vertex " + std::to_string(i) + " has " + std::to_string(inf[i].size()) +
-                         " skin influences, glTF export supports at most 8");
-    std::stable_sort(inf[i].begin(), inf[i].end(), [](const auto& a, const auto& b) { return a.second > b.second; });
-  }
-  int max_inf = 1;
-  for (const auto& v : inf) max_inf = std::max(max_inf, static_cast<int>(v.size()));
-  const int sets = max_inf > 4 ? 2 : 1;
+  const std::vector<Influences> inf = influences_strongest_first(model);
 
   tg::Model g;
   g.asset.version = "2.0";
   g.asset.generator = "breastfit";
   BufferBuilder bb(g);
-
-  // Geometry.
-  std::vector<float> pos(3 * nv), nrm(3 * nv);
-  const Points N = area_weighted_normals(model.rest.V, model.rest.F);
-  for (Index i = 0; i < nv; ++i) {
-    const Vec3 q = model_to_gltf(model.rest.V.row(i).transpose());
-    const Vec3 n = model_to_gltf(N.row(i).transpose()).normalized();
-    for (int c = 0; c < 3; ++c) {
-      pos[3 * i + c] = static_cast<float>(q[c]);
-      nrm[3 * i + c] = static_cast<float>(n[c]);
-    }
-  }
   tg::Primitive prim;
   prim.mode = TINYGLTF_MODE_TRIANGLES;
-  prim.attributes["POSITION"] = bb.add_vec3_floats(pos, TINYGLTF_TARGET_ARRAY_BUFFER);
-  prim.attributes["NORMAL"] = bb.add_vec3_floats(nrm, TINYGLTF_TARGET_ARRAY_BUFFER);
-  {
-    std::vector<uint32_t> idx(3 * model.rest.num_faces());
-    for (Index f = 0; f < model.rest.num_faces(); ++f)
-      for (int c = 0; c < 3; ++c) idx[3 * f + c] = static_cast<uint32_t>(model.rest.F(f, c));
-    const int view = bb.add_view(idx.data(), idx.size() * 4, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
-    prim.indices = bb.add_accessor(view, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, idx.size(), TINYGLTF_TYPE_SCALAR);
-  }
-  for (int set = 0; set < sets; ++set) {
-    std::vector<uint16_t> joints(4 * nv, 0);
-    std::vector<float> weights(4 * nv, 0.0f);
-    for (Index i = 0; i < nv; ++i) {
-      for (int c = 0; c < 4; ++c) {
-        const size_t e = static_cast<size_t>(4 * set + c);
-        if (e >= inf[i].size()) break;
-        joints[4 * i + c] = static_cast<uint16_t>(inf[i][e].first);
-        weights[4 * i + c] = static_cast<float>(inf[i][e].second);
-      }
-    }
-    const int jv = bb.add_view(joints.data(), joints.size() * 2, TINYGLTF_TARGET_ARRAY_BUFFER);
-    prim.attributes["JOINTS_" + std::to_string(set)] =
-        bb.add_accessor(jv, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, nv, TINYGLTF_TYPE_VEC4);
-    const int wv = bb.add_view(weights.data(), weights.size() * 4, TINYGLTF_TARGET_ARRAY_BUFFER);
-    prim.attributes["WEIGHTS_" + std::to_string(set)] =
-        bb.add_accessor(wv, TINYGLTF_COMPONENT_TYPE_FLOAT, nv, TINYGLTF_TYPE_VEC4);
-  }
-
-  // Morph targets: one sparse POSITION accessor per blendshape.
-  json target_names = json::array();
-  json bounds = json::object();
-  for (const Blendshape& s : model.blendshapes) {
-    target_names.push_back(s.name);
-    bounds[s.name] = json::array({s.lo, s.hi});
-    const size_t n = s.vertices.size();
-    std::vector<double> lo(3, 0.0), hi(3, 0.0);
-    std::vector<uint32_t> idx(n);
-    std::vector<float> val(3 * n);
-    for (size_t r = 0; r < n; ++r) {
-      idx[r] = static_cast<uint32_t>(s.vertices[r]);
-      const Vec3 d = model_to_gltf(s.displacements.row(static_cast<Index>(r)).transpose());
-      for (int c = 0; c < 3; ++c) {
-        val[3 * r + c] = static_cast<float>(d[c]);
-        lo[c] = std::min<double>(lo[c], val[3 * r + c]);
-        hi[c] = std::max<double>(hi[c], val[3 * r + c]);
-      }
-    }
-    const int acc = bb.add_accessor(-1, TINYGLTF_COMPONENT_TYPE_FLOAT, nv, TINYGLTF_TYPE_VEC3, lo, hi);
-    if (n > 0) {
-      tg::Accessor& a = g.accessors[acc];
-      a.sparse.isSparse = true;
-      a.sparse.count = static_cast<int>(n);
-      a.sparse.indices.bufferView = bb.add_view(idx.data(), n * 4, 0);
-      a.sparse.indices.byteOffset = 0;
-      a.sparse.indices.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
-      a.sparse.values.bufferView = bb.add_view(val.data(), val.size() * 4, 0);
-      a.sparse.values.byteOffset = 0;
-    }
-    prim.targets.push_back({{"POSITION", acc}});
-  }
-
+  add_geometry(model, bb, prim);
+  add_skin_attributes(inf, bb, prim);
+  add_morph_targets(model, g, bb, prim);
   tg::Mesh mesh;
   mesh.name = model.name;
   mesh.primitives.push_back(prim);
   mesh.weights.assign(model.blendshapes.size(), 0.0);
-  json bf;
-  bf["version"] = kFormatVersion;
-  bf["name"] = model.name;
-  bf["units"] = "mm";
-  bf["frame"] = "LPS";
-  bf["blendshape_bounds"] = bounds;
-  bf["landmarks"] = json::array();
-  for (const auto& l : model.landmarks)
-    bf["landmarks"].push_back({{"name", l.name}, {"face", l.point.face}, {"bary", vec_json(l.point.bary)}});
-  bf["drawings"] = json::array();
-  for (const auto& d : model.drawings) {
-    json pts = json::array();
-    for (const auto& sp : d.points) pts.push_back(json::array({sp.face, sp.bary[0], sp.bary[1], sp.bary[2]}));
-    bf["drawings"].push_back({{"name", d.name}, {"closed", d.closed}, {"points", pts}});
-  }
-  bf["regions"] = json::array();
-  for (const auto& r : model.regions) bf["regions"].push_back({{"name", r.name}, {"vertices", r.vertices}});
-  mesh.extras = to_value(json{{"targetNames", target_names}, {"breastfit", bf}});
+  mesh.extras = to_value(mesh_extras_json(model));
   g.meshes.push_back(std::move(mesh));
-
-  // Nodes: 0 = mesh, 1 = Armature, 2.. = joints.
-  tg::Node mesh_node;
-  mesh_node.name = model.name;
-  mesh_node.mesh = 0;
-  mesh_node.skin = 0;
-  g.nodes.push_back(mesh_node);
-  tg::Node armature;
-  armature.name = "Armature";
-  g.nodes.push_back(armature);
-  tg::Skin skin;
-  skin.name = "Armature";
-  std::vector<float> ibm(16 * nb, 0.0f);
-  for (int j = 0; j < nb; ++j) {
-    const Bone& b = model.bones[j];
-    tg::Node jn;
-    jn.name = b.name;
-    const Vec3 world = model_to_gltf(b.pivot);
-    const Vec3 local = b.parent ? Vec3(world - model_to_gltf(model.bones[*b.parent].pivot)) : world;
-    jn.translation = {local.x(), local.y(), local.z()};
-    json ex;
-    ex["pivot"] = vec_json(b.pivot);
-    ex["axes"] = json::array({vec_json(b.axes.col(0)), vec_json(b.axes.col(1)), vec_json(b.axes.col(2))});
-    ex["scale_lo"] = vec_json(b.scale_lo);
-    ex["scale_hi"] = vec_json(b.scale_hi);
-    if (b.scale_stiffness != Vec3::Ones()) ex["scale_stiffness"] = vec_json(b.scale_stiffness);
-    jn.extras = to_value(json{{"breastfit", ex}});
-    g.nodes.push_back(jn);
-    const int node_index = 2 + j;
-    skin.joints.push_back(node_index);
-    if (b.parent) g.nodes[2 + *b.parent].children.push_back(node_index);
-    else g.nodes[1].children.push_back(node_index);
-    // Inverse bind matrix: translation by −pivot (column-major).
-    for (int d = 0; d < 4; ++d) ibm[16 * j + 5 * d] = 1.0f;
-    for (int c = 0; c < 3; ++c) ibm[16 * j + 12 + c] = static_cast<float>(-world[c]);
-  }
-  {
-    const int view = bb.add_view(ibm.data(), ibm.size() * 4, 0);
-    skin.inverseBindMatrices = bb.add_accessor(view, TINYGLTF_COMPONENT_TYPE_FLOAT, nb, TINYGLTF_TYPE_MAT4);
-  }
-  skin.skeleton = 1;
-  g.skins.push_back(skin);
+  add_nodes_and_skin(model, g, bb);
   bb.finish();
 
   tg::Scene scene;

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "breastfit/core/errors.h"
+#include "breastfit/mesh/normals.h"
 
 namespace breastfit::model {
 namespace {
@@ -92,20 +93,7 @@ void PoseEvaluator::set_params(const PoseParams& params) {
   }
 }
 
-Points PoseEvaluator::vertex_normals() const {
-  const Triangles& F = model_.rest.F;
-  Points N = Points::Zero(posed_.rows(), 3);
-  for (Index f = 0; f < F.rows(); ++f) {
-    const Vec3 a = posed_.row(F(f, 0)), b = posed_.row(F(f, 1)), c = posed_.row(F(f, 2));
-    const Vec3 n = (b - a).cross(c - a);  // |n| = 2·area: area weighting
-    for (int k = 0; k < 3; ++k) N.row(F(f, k)) += n.transpose();
-  }
-  for (Index i = 0; i < N.rows(); ++i) {
-    const double len = N.row(i).norm();
-    if (len > 0) N.row(i) /= len;
-  }
-  return N;
-}
+Points PoseEvaluator::vertex_normals() const { return mesh::vertex_normals(posed_, model_.rest.F); }
 
 void PoseEvaluator::append_global(const Vec3& x, PointJacobian& out) const {
   // M = s_g R_g x + t_g;  ∂M/∂ω_g = −[s_g R_g x]×, ∂M/∂t_g = I, ∂M/∂(log s_g) = s_g R_g x.

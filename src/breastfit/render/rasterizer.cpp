@@ -7,6 +7,8 @@
 #include <utility>
 
 #include "breastfit/core/errors.h"
+#include "breastfit/mesh/adjacency.h"
+#include "breastfit/mesh/normals.h"
 
 namespace breastfit::render {
 
@@ -44,20 +46,6 @@ Vec3 shade(const Vec3& base, const Vec3& n, bool front, const Lighting& light, c
   }
   const double spec = s.specular > 0 ? s.specular * std::pow(d1, s.shininess) : 0.0;
   return base * intensity + Vec3::Constant(255.0 * spec);
-}
-
-Points area_weighted_normals(const Points& V, const Triangles& F) {
-  Points N = Points::Zero(V.rows(), 3);
-  for (Eigen::Index f = 0; f < F.rows(); ++f) {
-    const Vec3 a = V.row(F(f, 0)), b = V.row(F(f, 1)), c = V.row(F(f, 2));
-    const Vec3 n = (b - a).cross(c - a);  // |n| = 2 × area
-    for (int k = 0; k < 3; ++k) N.row(F(f, k)) += n.transpose();
-  }
-  for (Eigen::Index i = 0; i < N.rows(); ++i) {
-    const double len = N.row(i).norm();
-    if (len > 0) N.row(i) /= len;
-  }
-  return N;
 }
 
 /// Pixels whose centres (i + 0.5) lie in [a, b], clipped to [0, n − 1]: [lo, hi], empty when
@@ -176,7 +164,7 @@ void Rasterizer::draw_mesh(const Points& V, const Triangles& F, const Points& N,
     return;
   }
 
-  const Points normals = (style.smooth && N.rows() == 0) ? area_weighted_normals(V, F) : Points();
+  const Points normals = (style.smooth && N.rows() == 0) ? mesh::vertex_normals(V, F) : Points();
   const Points& vn = N.rows() ? N : normals;
 
   for (Eigen::Index t = 0; t < F.rows(); ++t) {
@@ -346,15 +334,7 @@ void Rasterizer::draw_wireframe(const Points& V, const Triangles& F, const Wiref
   if (F.minCoeff() < 0 || F.maxCoeff() >= V.rows())
     throw InvalidInput("draw_wireframe: a triangle index is outside the vertex range");
   next_call();
-  std::vector<std::pair<Index, Index>> edges;
-  edges.reserve(static_cast<size_t>(F.rows()) * 3);
-  for (Eigen::Index t = 0; t < F.rows(); ++t)
-    for (int k = 0; k < 3; ++k) {
-      const Index a = F(t, k), b = F(t, (k + 1) % 3);
-      edges.emplace_back(std::min(a, b), std::max(a, b));
-    }
-  std::sort(edges.begin(), edges.end());
-  edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+  const auto edges = mesh::unique_edges(F, static_cast<Index>(V.rows()));
   std::vector<Projected> q(static_cast<size_t>(V.rows()));
   for (Eigen::Index i = 0; i < V.rows(); ++i) q[i] = project_internal(V.row(i).transpose());
   const double radius = 0.5 * style.width_px * options_.supersample;

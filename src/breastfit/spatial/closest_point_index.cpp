@@ -13,6 +13,7 @@
 #endif
 
 #include "breastfit/core/errors.h"
+#include "breastfit/mesh/normals.h"
 #include "breastfit/spatial/detail/bvh.h"
 #include "breastfit/spatial/detail/point_triangle_kernel.h"
 #include "breastfit/spatial/detail/triangle_tables.h"
@@ -115,7 +116,7 @@ struct ClosestPointIndex::Impl {
   void build() {
     detail::validate_triangle_mesh(mesh, "ClosestPointIndex");
     face_flags = detail::triangle_flags(mesh, &vertex_boundary);
-    vertex_normals = detail::area_weighted_vertex_normals(mesh);
+    vertex_normals = mesh::vertex_normals(mesh);
     std::vector<std::uint32_t> prims;
     {
       detail::MortonSorted sorted = detail::triangle_morton_order(mesh);

@@ -7,6 +7,7 @@
 #include <Eigen/SparseCholesky>
 
 #include "breastfit/core/errors.h"
+#include "breastfit/mesh/normals.h"
 
 namespace breastfit::templ {
 
@@ -36,11 +37,9 @@ Eigen::SparseMatrix<double> cotan_laplacian(const TriangleMesh& mesh) {
 
 Eigen::VectorXd vertex_areas(const TriangleMesh& mesh) {
   Eigen::VectorXd A = Eigen::VectorXd::Zero(mesh.num_vertices());
-  for (Index f = 0; f < mesh.num_faces(); ++f) {
-    const Vec3 a = mesh.V.row(mesh.F(f, 0)), b = mesh.V.row(mesh.F(f, 1)), c = mesh.V.row(mesh.F(f, 2));
-    const double area = 0.5 * (b - a).cross(c - a).norm();
-    for (int k = 0; k < 3; ++k) A[mesh.F(f, k)] += area / 3.0;
-  }
+  const Eigen::VectorXd face_area = mesh::face_areas(mesh);
+  for (Index f = 0; f < mesh.num_faces(); ++f)
+    for (int k = 0; k < 3; ++k) A[mesh.F(f, k)] += face_area[f] / 3.0;
   return A;
 }
 

@@ -5,6 +5,7 @@
 #include <map>
 
 #include "breastfit/core/errors.h"
+#include "breastfit/mesh/adjacency.h"
 
 namespace breastfit::templ {
 namespace {
@@ -109,17 +110,17 @@ std::vector<SurfacePath> iso_lines(const TriangleMesh& mesh, const Eigen::Vector
 
 SurfacePath edge_path(const TriangleMesh& mesh, const std::vector<Index>& vertices) {
   SurfacePath p;
+  const mesh::AdjacencyLists faces_of = mesh::vertex_faces(mesh);
+  auto in_range = [&](Index v) { return v >= 0 && v < mesh.num_vertices(); };
   for (size_t i = 0; i + 1 < vertices.size(); ++i) {
     const Index a = vertices[i], b = vertices[i + 1];
-    Index face = -1;
-    for (Index f = 0; f < mesh.num_faces() && face < 0; ++f) {
-      bool ha = false, hb = false;
-      for (int c = 0; c < 3; ++c) {
-        ha |= mesh.F(f, c) == a;
-        hb |= mesh.F(f, c) == b;
-      }
-      if (ha && hb) face = f;
-    }
+    Index face = -1;  // the lowest triangle with both a and b
+    if (in_range(a) && in_range(b))
+      for (const Index f : faces_of[a])
+        if (mesh.F(f, 0) == b || mesh.F(f, 1) == b || mesh.F(f, 2) == b) {
+          face = f;
+          break;
+        }
     if (face < 0)
       throw InvalidInput("edge_path: vertices " + std::to_string(a) + " and " + std::to_string(b) +
                          " share no edge");

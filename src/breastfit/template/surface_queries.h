@@ -9,15 +9,13 @@
 
 namespace breastfit::templ {
 
-/// Closest point of the mesh to q (ties: lowest face index).
+/// Closest point of the mesh to q (ties: lowest face index), by spatial::closest_point_on_triangle
+/// on every triangle (degenerate triangles answer with their closest edge).
 /// \throws InvalidInput when the mesh has no triangles.
 SurfacePoint closest_surface_point(const TriangleMesh& mesh, const Vec3& q);
 
 /// First intersection of the ray origin + t dir (t in (0, max_t]) with the mesh, or nullopt.
 std::optional<SurfacePoint> first_ray_hit(const TriangleMesh& mesh, const Vec3& origin, const Vec3& dir,
                                           double max_t);
-
-/// Barycentric coordinates of the point of triangle (a, b, c) closest to p, and that point.
-Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, Vec3* bary);
 
 }  // namespace breastfit::templ

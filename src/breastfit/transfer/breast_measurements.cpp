@@ -3,14 +3,14 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <queue>
-#include <set>
 #include <string>
 
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 
 #include "breastfit/core/errors.h"
+#include "breastfit/mesh/adjacency.h"
+#include "breastfit/mesh/graph.h"
 #include "breastfit/transfer/curve_region.h"
 
 namespace breastfit::transfer {
@@ -44,35 +44,11 @@ RegionVolume region_volume(const TriangleMesh& surface, const std::vector<Index>
   const ChestWallFill fill = options.fill;
   const Index nv = surface.num_vertices();
   if (region.empty()) throw InvalidInput("region_volume: empty region");
-  std::vector<std::set<Index>> nbr(static_cast<size_t>(nv));
-  for (Index f = 0; f < surface.num_faces(); ++f)
-    for (int k = 0; k < 3; ++k) {
-      const Index a = surface.F(f, k), b = surface.F(f, (k + 1) % 3);
-      if (a == b) continue;
-      nbr[static_cast<size_t>(a)].insert(b);
-      nbr[static_cast<size_t>(b)].insert(a);
-    }
-  // Grown region: Dijkstra along edges from the region, up to margin_mm.
-  std::vector<double> dist(static_cast<size_t>(nv), std::numeric_limits<double>::infinity());
-  using Item = std::pair<double, Index>;
-  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
-  for (Index v : region) {
+  for (const Index v : region)
     if (v < 0 || v >= nv) throw InvalidInput("region_volume: vertex index " + std::to_string(v) + " out of range");
-    dist[static_cast<size_t>(v)] = 0;
-    queue.push({0.0, v});
-  }
-  while (!queue.empty()) {
-    const auto [d, v] = queue.top();
-    queue.pop();
-    if (d > dist[static_cast<size_t>(v)]) continue;
-    for (Index w : nbr[static_cast<size_t>(v)]) {
-      const double dw = d + (surface.V.row(v) - surface.V.row(w)).norm();
-      if (dw <= options.margin_mm && dw < dist[static_cast<size_t>(w)]) {
-        dist[static_cast<size_t>(w)] = dw;
-        queue.push({dw, w});
-      }
-    }
-  }
+  const mesh::AdjacencyLists nbr = mesh::vertex_neighbours(surface);
+  // Grown region: Dijkstra along edges from the region, up to margin_mm.
+  const std::vector<double> dist = mesh::edge_distances(surface.V, nbr, region, options.margin_mm);
   std::vector<int> slot(static_cast<size_t>(nv), -1);
   int n_in = 0;
   for (Index v = 0; v < nv; ++v)
@@ -82,8 +58,8 @@ RegionVolume region_volume(const TriangleMesh& surface, const std::vector<Index>
   // Uniform graph Laplacian L (symmetric: L = D − A over the mesh edges).
   std::vector<Eigen::Triplet<double>> t;
   for (Index v = 0; v < nv; ++v) {
-    t.emplace_back(v, v, static_cast<double>(nbr[static_cast<size_t>(v)].size()));
-    for (Index w : nbr[static_cast<size_t>(v)]) t.emplace_back(v, w, -1.0);
+    t.emplace_back(v, v, static_cast<double>(nbr.size(v)));
+    for (const Index w : nbr[v]) t.emplace_back(v, w, -1.0);
   }
   SpMat L(nv, nv);
   L.setFromTriplets(t.begin(), t.end());

@@ -2,20 +2,17 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <cstdio>
-#include <functional>
 #include <iterator>
-#include <limits>
 #include <memory>
-#include <queue>
 #include <string>
-#include <unordered_map>
 #include <utility>
 
 #include <Eigen/Eigenvalues>
 
 #include "breastfit/core/errors.h"
+#include "breastfit/mesh/adjacency.h"
+#include "breastfit/mesh/graph.h"
 #include "breastfit/mesh/subdivision.h"
 #include "breastfit/spatial/knn_index.h"
 #include "breastfit/spatial/point_triangle.h"
@@ -24,7 +21,10 @@
 namespace breastfit::transfer {
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
+/// Prefix of curve_region's error messages.
+constexpr const char* kWho = "vertices_inside_curve";
+/// Vertex expansions allowed to join two consecutive snapped samples by an edge path.
+constexpr int kMaxPathExpansions = 20000;
 
 std::string fmt(double x) {
   char buf[32];
@@ -32,58 +32,7 @@ std::string fmt(double x) {
   return buf;
 }
 
-/// Compressed adjacency lists: the items of vertex v are items[start[v] .. start[v+1]).
-struct Csr {
-  std::vector<Index> start, items;
-  const Index* begin(Index v) const { return items.data() + start[static_cast<size_t>(v)]; }
-  const Index* end(Index v) const { return items.data() + start[static_cast<size_t>(v) + 1]; }
-  Index size(Index v) const { return start[static_cast<size_t>(v) + 1] - start[static_cast<size_t>(v)]; }
-  bool contains(Index v, Index w) const { return std::binary_search(begin(v), end(v), w); }
-};
-
-/// Sorted unique neighbours of every vertex over the triangles' edges.
-Csr vertex_neighbours(const Triangles& F, Index nv) {
-  Csr raw;
-  raw.start.assign(static_cast<size_t>(nv) + 1, 0);
-  for (Eigen::Index f = 0; f < F.rows(); ++f)
-    for (int k = 0; k < 3; ++k) raw.start[static_cast<size_t>(F(f, k)) + 1] += 2;
-  for (size_t v = 0; v < static_cast<size_t>(nv); ++v) raw.start[v + 1] += raw.start[v];
-  raw.items.resize(static_cast<size_t>(raw.start.back()));
-  std::vector<Index> fill(raw.start.begin(), raw.start.end() - 1);
-  for (Eigen::Index f = 0; f < F.rows(); ++f)
-    for (int k = 0; k < 3; ++k) {
-      const Index v = F(f, k);
-      raw.items[static_cast<size_t>(fill[static_cast<size_t>(v)]++)] = F(f, (k + 1) % 3);
-      raw.items[static_cast<size_t>(fill[static_cast<size_t>(v)]++)] = F(f, (k + 2) % 3);
-    }
-  Csr out;
-  out.start.assign(static_cast<size_t>(nv) + 1, 0);
-  out.items.reserve(raw.items.size() / 2);
-  for (Index v = 0; v < nv; ++v) {
-    Index* b = raw.items.data() + raw.start[static_cast<size_t>(v)];
-    Index* e = raw.items.data() + raw.start[static_cast<size_t>(v) + 1];
-    std::sort(b, e);
-    e = std::unique(b, e);
-    for (Index* p = b; p != e; ++p)
-      if (*p != v) out.items.push_back(*p);
-    out.start[static_cast<size_t>(v) + 1] = static_cast<Index>(out.items.size());
-  }
-  return out;
-}
-
-/// The triangles around every vertex.
-Csr vertex_faces(const Triangles& F, Index nv) {
-  Csr out;
-  out.start.assign(static_cast<size_t>(nv) + 1, 0);
-  for (Eigen::Index f = 0; f < F.rows(); ++f)
-    for (int k = 0; k < 3; ++k) ++out.start[static_cast<size_t>(F(f, k)) + 1];
-  for (size_t v = 0; v < static_cast<size_t>(nv); ++v) out.start[v + 1] += out.start[v];
-  out.items.resize(static_cast<size_t>(out.start.back()));
-  std::vector<Index> fill(out.start.begin(), out.start.end() - 1);
-  for (Eigen::Index f = 0; f < F.rows(); ++f)
-    for (int k = 0; k < 3; ++k) out.items[static_cast<size_t>(fill[static_cast<size_t>(F(f, k))]++)] = static_cast<Index>(f);
-  return out;
-}
+[[noreturn]] void fail(const std::string& problem) { throw InvalidInput(std::string(kWho) + ": " + problem); }
 
 double mean_edge_length(const Points& V, const Triangles& F) {
   double s = 0;
@@ -92,20 +41,38 @@ double mean_edge_length(const Points& V, const Triangles& F) {
   return F.rows() ? s / (3.0 * static_cast<double>(F.rows())) : 0.0;
 }
 
-/// Closest point to p on the triangles around vertex v (the surface near v).
-Vec3 closest_on_fan(const Vec3& p, Index v, const Points& V, const Triangles& F, const Csr& vf) {
-  Vec3 best = V.row(v);
-  double best_d2 = (best - p).squaredNorm();
-  for (const Index* f = vf.begin(v); f != vf.end(v); ++f) {
-    const spatial::PointTriangleResult r =
-        spatial::closest_point_on_triangle(p, V.row(F(*f, 0)), V.row(F(*f, 1)), V.row(F(*f, 2)));
-    if (r.sq_dist < best_d2) {
-      best_d2 = r.sq_dist;
-      best = r.point;
+/// The mesh with its vertex graph, as the steps of find_region see it.
+struct SurfaceGraph {
+  const Points& V;
+  const Triangles& F;
+  Index nv;
+  mesh::AdjacencyLists nbr;  ///< neighbours of every vertex
+  mesh::AdjacencyLists vf;   ///< triangles around every vertex
+  double h;                  ///< mean edge length (at least 1e-6)
+
+  explicit SurfaceGraph(const TriangleMesh& mesh)
+      : V(mesh.V),
+        F(mesh.F),
+        nv(mesh.num_vertices()),
+        nbr(mesh::vertex_neighbours(mesh)),
+        vf(mesh::vertex_faces(mesh)),
+        h(std::max(mean_edge_length(mesh.V, mesh.F), 1e-6)) {}
+
+  /// Closest point to p on the triangles around vertex v (the surface near v).
+  Vec3 closest_on_fan(const Vec3& p, Index v) const {
+    Vec3 best = V.row(v);
+    double best_d2 = (best - p).squaredNorm();
+    for (const Index f : vf[v]) {
+      const spatial::PointTriangleResult r =
+          spatial::closest_point_on_triangle(p, V.row(F(f, 0)), V.row(F(f, 1)), V.row(F(f, 2)));
+      if (r.sq_dist < best_d2) {
+        best_d2 = r.sq_dist;
+        best = r.point;
+      }
     }
+    return best;
   }
-  return best;
-}
+};
 
 /// Even-odd point-in-polygon test in 2D.
 bool inside_polygon(const Vec2& p, const std::vector<Vec2>& poly) {
@@ -157,53 +124,32 @@ struct SampledCurve {
   }
 };
 
-/// Shortest edge path from a to b (A*, Euclidean), excluding a, including b; empty when b is
-/// not reached within the expansion budget.
-std::vector<Index> edge_path(Index a, Index b, const Points& V, const Csr& nbr, std::vector<double>& g,
-                             std::vector<Index>& parent, std::vector<Index>& touched) {
-  using Item = std::pair<double, Index>;
-  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> open;
-  const Vec3 target = V.row(b);
-  g[static_cast<size_t>(a)] = 0;
-  parent[static_cast<size_t>(a)] = -1;
-  touched.push_back(a);
-  open.push({(V.row(a).transpose() - target).norm(), a});
-  int expansions = 0;
-  bool found = false;
-  while (!open.empty() && expansions < 20000) {
-    const auto [f, v] = open.top();
-    open.pop();
-    if (v == b) {
-      found = true;
-      break;
-    }
-    const double gv = g[static_cast<size_t>(v)];
-    if (f > gv + (V.row(v).transpose() - target).norm() + 1e-12) continue;  // stale
-    ++expansions;
-    for (const Index* w = nbr.begin(v); w != nbr.end(v); ++w) {
-      const double gw = gv + (V.row(v) - V.row(*w)).norm();
-      if (gw < g[static_cast<size_t>(*w)]) {
-        if (!std::isfinite(g[static_cast<size_t>(*w)])) touched.push_back(*w);
-        g[static_cast<size_t>(*w)] = gw;
-        parent[static_cast<size_t>(*w)] = v;
-        open.push({gw + (V.row(*w).transpose() - target).norm(), *w});
-      }
-    }
-  }
-  std::vector<Index> path;
-  if (found)
-    for (Index v = b; v != a; v = parent[static_cast<size_t>(v)]) path.push_back(v);
-  std::reverse(path.begin(), path.end());
-  for (Index v : touched) g[static_cast<size_t>(v)] = kInf;
-  touched.clear();
-  return path;
-}
+/// The curve's best-fit plane (PCA of its samples) and the curve projected onto it.
+struct CurvePlane {
+  Vec3 mean = Vec3::Zero();   ///< a point of the plane
+  Vec3 e1 = Vec3::UnitX();    ///< first in-plane axis (largest spread)
+  Vec3 e2 = Vec3::UnitY();    ///< second in-plane axis
+  std::vector<Vec2> polygon;  ///< the curve in (e1, e2) coordinates
 
-void check_mesh(const TriangleMesh& mesh, const char* who) {
-  if (mesh.num_faces() == 0) throw InvalidInput(std::string(who) + ": the mesh has no triangles");
-  if (!mesh.V.allFinite()) throw InvalidInput(std::string(who) + ": the mesh has non-finite vertex coordinates");
+  Vec2 project(const Vec3& p) const {
+    const Vec3 d = p - mean;
+    return Vec2(d.dot(e1), d.dot(e2));
+  }
+  /// Sets the polygon to the rows of S projected onto the plane.
+  void set_polygon(const Points& S) {
+    polygon.resize(static_cast<size_t>(S.rows()));
+    for (Eigen::Index i = 0; i < S.rows(); ++i) polygon[static_cast<size_t>(i)] = project(S.row(i).transpose());
+  }
+  /// True when p projects inside the curve.
+  bool contains(const Vec3& p) const { return inside_polygon(project(p), polygon); }
+};
+
+/// \throws InvalidInput for a mesh without triangles, non-finite coordinates or a bad index.
+void check_mesh(const TriangleMesh& mesh) {
+  if (mesh.num_faces() == 0) fail("the mesh has no triangles");
+  if (!mesh.V.allFinite()) fail("the mesh has non-finite vertex coordinates");
   if (mesh.F.minCoeff() < 0 || mesh.F.maxCoeff() >= mesh.num_vertices())
-    throw InvalidInput(std::string(who) + ": a triangle's vertex index is out of range");
+    fail("a triangle's vertex index is out of range");
 }
 
 /// The curve without repeated consecutive points (nor a repeated first point at the end).
@@ -234,55 +180,62 @@ void CurveVolumeOptions::validate() const {
 
 namespace {
 
-/// curve_region; with `border`, also the nearest point of the curve (its feet on the surface)
-/// to each loop vertex, in the order of CurveRegion::loop.
-CurveRegion find_region(const TriangleMesh& mesh, const Points& closed_curve_mm, const CurveRegionOptions& options,
-                        std::vector<Vec3>* border) {
-  constexpr const char* who = "vertices_inside_curve";
+// ---- the steps of find_region, in order ----------------------------------------------------
+
+/// The input checked (options, mesh, curve) and the curve's distinct points.
+Points checked_curve(const TriangleMesh& mesh, const Points& closed_curve_mm, const CurveRegionOptions& options) {
   options.validate();
-  check_mesh(mesh, who);
+  check_mesh(mesh);
   if (closed_curve_mm.rows() < 3)
-    throw InvalidInput(std::string(who) + ": the curve has " + std::to_string(closed_curve_mm.rows()) +
-                       " points (a closed curve needs at least 3)");
-  if (!closed_curve_mm.allFinite()) throw InvalidInput(std::string(who) + ": the curve has non-finite coordinates");
-  const Points C = distinct_points(closed_curve_mm);
-  if (C.rows() < 3) throw InvalidInput(std::string(who) + ": the curve has fewer than 3 distinct points");
+    fail("the curve has " + std::to_string(closed_curve_mm.rows()) + " points (a closed curve needs at least 3)");
+  if (!closed_curve_mm.allFinite()) fail("the curve has non-finite coordinates");
+  Points C = distinct_points(closed_curve_mm);
+  if (C.rows() < 3) fail("the curve has fewer than 3 distinct points");
+  return C;
+}
 
-  const Points& V = mesh.V;
-  const Triangles& F = mesh.F;
-  const Index nv = mesh.num_vertices();
-  const Csr nbr = vertex_neighbours(F, nv);
-  const Csr vf = vertex_faces(F, nv);
-  const double h = std::max(mean_edge_length(V, F), 1e-6);
-
-  // Samples every half edge (at most 200k of them).
-  const double length = polyline_length(C, true);
+/// Samples every half edge (at most 200k of them).
+SampledCurve sample_curve(const Points& C, double h) {
   SampledCurve curve;
-  curve.spacing = std::max(0.5 * h, length / 200000.0);
+  curve.spacing = std::max(0.5 * h, polyline_length(C, true) / 200000.0);
   curve.S = resample_polyline(C, true, curve.spacing);
-  const Index ns = static_cast<Index>(curve.S.rows());
+  return curve;
+}
 
-  // Best-fit plane (PCA); a collinear curve has no inside.
-  const Vec3 mean = curve.S.colwise().mean();
-  const Points D = curve.S.rowwise() - mean.transpose();
+/// Best-fit plane (PCA) of the samples S (the polygon is left empty); a collinear curve has no
+/// inside.
+CurvePlane best_fit_plane(const Points& S) {
+  CurvePlane plane;
+  plane.mean = S.colwise().mean();
+  const Points D = S.rowwise() - plane.mean.transpose();
   Eigen::SelfAdjointEigenSolver<Mat3> eig(D.transpose() * D);
   const Vec3 lam = eig.eigenvalues();  // ascending
-  if (!(lam(2) > 0) || lam(1) <= 1e-10 * lam(2))
-    throw InvalidInput(std::string(who) + ": the curve is degenerate (its points are collinear)");
-  const Vec3 e1 = eig.eigenvectors().col(2), e2 = eig.eigenvectors().col(1);
+  if (!(lam(2) > 0) || lam(1) <= 1e-10 * lam(2)) fail("the curve is degenerate (its points are collinear)");
+  plane.e1 = eig.eigenvectors().col(2);
+  plane.e2 = eig.eigenvectors().col(1);
+  return plane;
+}
 
-  // Snap every sample to its nearest vertex (only vertices near the curve enter the grid).
-  const double reach = options.max_curve_distance_mm + 4 * h;
-  const Vec3 lo = curve.S.colwise().minCoeff().transpose().array() - reach;
-  const Vec3 hi = curve.S.colwise().maxCoeff().transpose().array() + reach;
+/// The samples near the surface, each with its foot on the surface and the vertex nearest to it.
+struct SnappedCurve {
+  std::vector<Index> vertices;  ///< per kept sample: the vertex nearest to its foot
+  std::vector<Vec3> feet;       ///< per kept sample: the closest surface point
+  double distance_sum = 0;      ///< sum of the sample-to-foot distances
+};
+
+/// Snaps every sample to its nearest vertex within `reach` (only vertices near the curve enter
+/// the grid) and to its foot: the closest surface point on the triangles around that vertex.
+SnappedCurve snap_to_surface(const SurfaceGraph& g, const Points& S, double reach) {
+  const Vec3 lo = S.colwise().minCoeff().transpose().array() - reach;
+  const Vec3 hi = S.colwise().maxCoeff().transpose().array() + reach;
   std::vector<Index> near_ids;
-  for (Index v = 0; v < nv; ++v) {
-    if (nbr.size(v) == 0) continue;
-    const Vec3 p = V.row(v);
+  for (Index v = 0; v < g.nv; ++v) {
+    if (g.nbr.size(v) == 0) continue;
+    const Vec3 p = g.V.row(v);
     if ((p.array() >= lo.array()).all() && (p.array() <= hi.array()).all()) near_ids.push_back(v);
   }
   Points near_points(static_cast<Eigen::Index>(near_ids.size()), 3);
-  for (size_t k = 0; k < near_ids.size(); ++k) near_points.row(static_cast<Eigen::Index>(k)) = V.row(near_ids[k]);
+  for (size_t k = 0; k < near_ids.size(); ++k) near_points.row(static_cast<Eigen::Index>(k)) = g.V.row(near_ids[k]);
   const spatial::KnnIndex vgrid(near_points);
   // The vertex near the curve nearest to p within reach, or -1.
   auto nearest_vertex = [&](const Vec3& p) -> Index {
@@ -290,186 +243,165 @@ CurveRegion find_region(const TriangleMesh& mesh, const Points& closed_curve_mm,
     const spatial::Neighbor nb = vgrid.closest(p);
     return nb.sq_dist <= reach * reach ? near_ids[static_cast<size_t>(nb.index)] : -1;
   };
-  // From here on the curve is its samples' feet on the surface (the closest surface point, on the
-  // triangles around the nearest vertex): a curve drawn on a scan lies a few mm off a fit of it,
-  // and off the surface its sides would be blurred where the surface is steep.
-  std::vector<Index> snapped;
-  std::vector<Vec3> feet;
-  double dist_sum = 0;
+  SnappedCurve out;
+  const Index ns = static_cast<Index>(S.rows());
   for (Index i = 0; i < ns; ++i) {
-    const Vec3 p = curve.S.row(i);
+    const Vec3 p = S.row(i);
     const Index v = nearest_vertex(p);
     if (v < 0) continue;
-    const Vec3 foot = closest_on_fan(p, v, V, F, vf);
-    dist_sum += (foot - p).norm();
+    const Vec3 foot = g.closest_on_fan(p, v);
+    out.distance_sum += (foot - p).norm();
     const Index w = nearest_vertex(foot);
-    snapped.push_back(w >= 0 ? w : v);
-    feet.push_back(foot);
+    out.vertices.push_back(w >= 0 ? w : v);
+    out.feet.push_back(foot);
   }
-  if (2 * snapped.size() < static_cast<size_t>(ns))
-    throw InvalidInput(std::string(who) + ": most of the curve is more than " + fmt(reach) +
-                       " mm from the surface (another frame or units?)");
-  curve.S.resize(static_cast<Eigen::Index>(feet.size()), 3);
-  for (size_t i = 0; i < feet.size(); ++i) curve.S.row(static_cast<Eigen::Index>(i)) = feet[i].transpose();
-  const Index nfeet = static_cast<Index>(feet.size());
-  std::vector<Vec2> polygon(static_cast<size_t>(nfeet));
-  for (Index i = 0; i < nfeet; ++i) {
-    const Vec3 d = curve.S.row(i).transpose() - mean;
-    polygon[static_cast<size_t>(i)] = Vec2(d.dot(e1), d.dot(e2));
+  if (2 * out.vertices.size() < static_cast<size_t>(ns))
+    fail("most of the curve is more than " + fmt(reach) + " mm from the surface (another frame or units?)");
+  return out;
+}
+
+/// The snapped vertices on the piece of the mesh most of them are on: samples snapped onto
+/// another piece (a floating fragment of a scan) are dropped.
+std::vector<Index> on_main_piece(const SurfaceGraph& g, const std::vector<Index>& snapped) {
+  std::vector<int> piece(static_cast<size_t>(g.nv), -1);
+  std::vector<int> votes;
+  for (const Index s0 : snapped) {
+    if (piece[static_cast<size_t>(s0)] < 0) {
+      mesh::flood_fill(g.nbr, s0, static_cast<int>(votes.size()), piece);
+      votes.push_back(0);
+    }
+    ++votes[static_cast<size_t>(piece[static_cast<size_t>(s0)])];
   }
-  auto inside2d = [&](Index v) {
-    const Vec3 d = V.row(v).transpose() - mean;
-    return inside_polygon(Vec2(d.dot(e1), d.dot(e2)), polygon);
+  const int main_piece = static_cast<int>(std::max_element(votes.begin(), votes.end()) - votes.begin());
+  std::vector<Index> kept;
+  for (const Index v : snapped)
+    if (piece[static_cast<size_t>(v)] == main_piece) kept.push_back(v);
+  if (10 * (snapped.size() - kept.size()) > snapped.size()) fail("the curve runs over unconnected parts of the mesh");
+  return kept;
+}
+
+/// A closed path along mesh edges.
+struct EdgeLoop {
+  std::vector<Index> vertices;  ///< in order along the curve, each once
+  std::vector<char> on_loop;    ///< #V flags
+};
+
+/// The closed edge loop through the snapped vertices: consecutive ones joined by shortest edge
+/// paths (a sample out of the search budget is skipped).
+EdgeLoop closed_edge_loop(const SurfaceGraph& g, const std::vector<Index>& snapped) {
+  EdgeLoop loop;
+  loop.on_loop.assign(static_cast<size_t>(g.nv), 0);
+  auto add = [&](Index v) {
+    if (!loop.on_loop[static_cast<size_t>(v)]) {
+      loop.on_loop[static_cast<size_t>(v)] = 1;
+      loop.vertices.push_back(v);
+    }
   };
-  CurveRegion out;
-  out.mean_curve_distance_mm = dist_sum / static_cast<double>(snapped.size());
-  if (out.mean_curve_distance_mm > options.max_curve_distance_mm)
-    throw InvalidInput(std::string(who) + ": the curve is " + fmt(out.mean_curve_distance_mm) +
-                       " mm from the surface on average (more than " + fmt(options.max_curve_distance_mm) +
-                       " mm: another frame or units?)");
-
-  // Closed edge loop through the snapped vertices.
-  std::vector<char> on_loop(static_cast<size_t>(nv), 0);
-  std::vector<Index> loop;
-  {
-    std::vector<double> g(static_cast<size_t>(nv), kInf);
-    std::vector<Index> parent(static_cast<size_t>(nv), -1), touched;
-    auto add = [&](Index v) {
-      if (!on_loop[static_cast<size_t>(v)]) {
-        on_loop[static_cast<size_t>(v)] = 1;
-        loop.push_back(v);
-      }
-    };
-    // Samples snapped onto another piece of the mesh than most of them (a floating fragment of
-    // a scan) are dropped.
-    std::vector<int> piece(static_cast<size_t>(nv), -1);
-    std::vector<int> votes;
-    {
-      std::vector<Index> stack;
-      for (Index s0 : snapped) {
-        if (piece[static_cast<size_t>(s0)] < 0) {
-          const int id = static_cast<int>(votes.size());
-          votes.push_back(0);
-          piece[static_cast<size_t>(s0)] = id;
-          stack.push_back(s0);
-          while (!stack.empty()) {
-            const Index v = stack.back();
-            stack.pop_back();
-            for (const Index* w = nbr.begin(v); w != nbr.end(v); ++w)
-              if (piece[static_cast<size_t>(*w)] < 0) {
-                piece[static_cast<size_t>(*w)] = id;
-                stack.push_back(*w);
-              }
-          }
-        }
-        ++votes[static_cast<size_t>(piece[static_cast<size_t>(s0)])];
-      }
-    }
-    const int main_piece = static_cast<int>(std::max_element(votes.begin(), votes.end()) - votes.begin());
-    std::vector<Index> kept;
-    for (Index v : snapped)
-      if (piece[static_cast<size_t>(v)] == main_piece) kept.push_back(v);
-    if (10 * (snapped.size() - kept.size()) > snapped.size())
-      throw InvalidInput(std::string(who) + ": the curve runs over unconnected parts of the mesh");
-    snapped.swap(kept);
-    add(snapped[0]);
-    Index a = snapped[0];
-    size_t skipped = 0;
-    for (size_t i = 1; i <= snapped.size(); ++i) {
-      const Index b = snapped[i % snapped.size()];
-      if (a == b) continue;
-      if (nbr.contains(a, b)) {
-        add(b);
-        a = b;
-        continue;
-      }
-      const std::vector<Index> path = edge_path(a, b, V, nbr, g, parent, touched);
-      if (path.empty()) {  // out of the search budget: a far jump, skip the sample
-        ++skipped;
-        continue;
-      }
-      for (Index v : path) add(v);
+  mesh::EdgePathFinder paths(g.V, g.nbr);
+  add(snapped[0]);
+  Index a = snapped[0];
+  size_t skipped = 0;
+  for (size_t i = 1; i <= snapped.size(); ++i) {
+    const Index b = snapped[i % snapped.size()];
+    if (a == b) continue;
+    if (g.nbr.contains(a, b)) {
+      add(b);
       a = b;
+      continue;
     }
-    if (a != snapped[0] || 10 * skipped > snapped.size())
-      throw InvalidInput(std::string(who) + ": the curve jumps across the surface (no short path along the mesh between its points)");
-  }
-
-  // Pieces of the surface without the loop.
-  std::vector<int> comp(static_cast<size_t>(nv), -1);
-  int ncomp = 0;
-  {
-    std::vector<Index> stack;
-    for (Index s = 0; s < nv; ++s) {
-      if (on_loop[static_cast<size_t>(s)] || comp[static_cast<size_t>(s)] >= 0 || nbr.size(s) == 0) continue;
-      comp[static_cast<size_t>(s)] = ncomp;
-      stack.push_back(s);
-      while (!stack.empty()) {
-        const Index v = stack.back();
-        stack.pop_back();
-        for (const Index* w = nbr.begin(v); w != nbr.end(v); ++w)
-          if (!on_loop[static_cast<size_t>(*w)] && comp[static_cast<size_t>(*w)] < 0) {
-            comp[static_cast<size_t>(*w)] = ncomp;
-            stack.push_back(*w);
-          }
-      }
-      ++ncomp;
+    const std::vector<Index> path = paths.path(a, b, kMaxPathExpansions);
+    if (path.empty()) {  // out of the search budget: a far jump, skip the sample
+      ++skipped;
+      continue;
     }
+    for (const Index v : path) add(v);
+    a = b;
   }
+  if (a != snapped[0] || 10 * skipped > snapped.size())
+    fail("the curve jumps across the surface (no short path along the mesh between its points)");
+  return loop;
+}
 
-  // Vote: the vertices next to the loop that project inside the curve tell which pieces are in.
+/// Pieces of the surface without the loop: a label per vertex (-1 on the loop and on vertices
+/// no triangle uses) and their number.
+struct Pieces {
+  std::vector<int> label;
+  int count = 0;
+};
+
+Pieces pieces_without_loop(const SurfaceGraph& g, const EdgeLoop& loop) {
+  Pieces pieces;
+  pieces.label.assign(static_cast<size_t>(g.nv), -1);
+  for (Index s = 0; s < g.nv; ++s) {
+    if (loop.on_loop[static_cast<size_t>(s)] || pieces.label[static_cast<size_t>(s)] >= 0 || g.nbr.size(s) == 0)
+      continue;
+    mesh::flood_fill(g.nbr, s, pieces.count, pieces.label, &loop.on_loop);
+    ++pieces.count;
+  }
+  return pieces;
+}
+
+/// Vote: the vertices next to the loop that project inside the curve tell which pieces are in.
+/// Returns 1 per vertex of an inside piece (0 on the loop).
+std::vector<char> inside_pieces(const SurfaceGraph& g, const EdgeLoop& loop, const Pieces& pieces,
+                                const CurvePlane& plane) {
   std::vector<Index> rim;  // non-loop vertices adjacent to the loop, in loop order
   {
-    std::vector<char> seen(static_cast<size_t>(nv), 0);
-    for (Index u : loop)
-      for (const Index* w = nbr.begin(u); w != nbr.end(u); ++w)
-        if (!on_loop[static_cast<size_t>(*w)] && !seen[static_cast<size_t>(*w)]) {
-          seen[static_cast<size_t>(*w)] = 1;
-          rim.push_back(*w);
+    std::vector<char> seen(static_cast<size_t>(g.nv), 0);
+    for (const Index u : loop.vertices)
+      for (const Index w : g.nbr[u])
+        if (!loop.on_loop[static_cast<size_t>(w)] && !seen[static_cast<size_t>(w)]) {
+          seen[static_cast<size_t>(w)] = 1;
+          rim.push_back(w);
         }
   }
-  std::vector<int> pos(static_cast<size_t>(ncomp), 0), neg(static_cast<size_t>(ncomp), 0);
-  for (Index w : rim) (inside2d(w) ? pos : neg)[static_cast<size_t>(comp[static_cast<size_t>(w)])]++;
-  std::vector<char> comp_inside(static_cast<size_t>(ncomp), 0);
+  const auto nc = static_cast<size_t>(pieces.count);
+  std::vector<int> pos(nc, 0), neg(nc, 0);
+  for (const Index w : rim) (plane.contains(g.V.row(w).transpose()) ? pos : neg)[static_cast<size_t>(pieces.label[static_cast<size_t>(w)])]++;
+  std::vector<char> piece_inside(nc, 0);
   bool any_in = false, any_out = false;
-  for (int c = 0; c < ncomp; ++c) {
-    if (pos[static_cast<size_t>(c)] + neg[static_cast<size_t>(c)] == 0) continue;
-    comp_inside[static_cast<size_t>(c)] = pos[static_cast<size_t>(c)] > neg[static_cast<size_t>(c)];
-    (comp_inside[static_cast<size_t>(c)] ? any_in : any_out) = true;
+  for (size_t c = 0; c < nc; ++c) {
+    if (pos[c] + neg[c] == 0) continue;
+    piece_inside[c] = pos[c] > neg[c];
+    (piece_inside[c] ? any_in : any_out) = true;
   }
-  if (any_in && !any_out)
-    throw InvalidInput(std::string(who) + ": the curve does not cut the surface in two (it runs over a gap or around a handle)");
+  if (any_in && !any_out) fail("the curve does not cut the surface in two (it runs over a gap or around a handle)");
+  std::vector<char> inside(static_cast<size_t>(g.nv), 0);
+  for (Index v = 0; v < g.nv; ++v) {
+    const int c = pieces.label[static_cast<size_t>(v)];
+    if (c >= 0) inside[static_cast<size_t>(v)] = piece_inside[static_cast<size_t>(c)];
+  }
+  return inside;
+}
 
-  std::vector<char> inside(static_cast<size_t>(nv), 0);
-  for (Index v = 0; v < nv; ++v)
-    if (comp[static_cast<size_t>(v)] >= 0) inside[static_cast<size_t>(v)] = comp_inside[static_cast<size_t>(comp[static_cast<size_t>(v)])];
-
-  // The loop's own vertices lie within about half an edge of the curve, on either side of it.
-  // Each is classified in the curve's normal plane at its nearest curve point c: the surface
-  // crosses that plane along a path from the outside pieces through (near) c to the inside
-  // pieces; the vertex is inside when, seen from the surface point q nearest to c, it lies in
-  // the direction of its inside neighbours rather than of its outside ones. This holds at sharp
-  // folds too (a ptotic breast's underside over the chest), where a normal-based side test fails.
-  curve.grid = std::make_unique<spatial::KnnIndex>(curve.S);
-  std::vector<char> loop_inside(loop.size(), 0);
-  for (size_t i = 0; i < loop.size(); ++i) {
-    const Index v = loop[i];
-    const auto [c, t] = curve.nearest(V.row(v).transpose());
-    const Vec3 q = closest_on_fan(c, v, V, F, vf);
+/// The loop's own vertices lie within about half an edge of the curve, on either side of it.
+/// Each is classified in the curve's normal plane at its nearest curve point c: the surface
+/// crosses that plane along a path from the outside pieces through (near) c to the inside
+/// pieces; the vertex is inside when, seen from the surface point q nearest to c, it lies in
+/// the direction of its inside neighbours rather than of its outside ones. This holds at sharp
+/// folds too (a ptotic breast's underside over the chest), where a normal-based side test fails.
+/// Writes the loop vertices' entries of `inside` (read for the other vertices).
+void classify_loop_vertices(const SurfaceGraph& g, const SampledCurve& curve, const CurvePlane& plane,
+                            const EdgeLoop& loop, const Pieces& pieces, std::vector<char>& inside) {
+  std::vector<char> loop_inside(loop.vertices.size(), 0);
+  for (size_t i = 0; i < loop.vertices.size(); ++i) {
+    const Index v = loop.vertices[i];
+    const auto [c, t] = curve.nearest(g.V.row(v).transpose());
+    const Vec3 q = g.closest_on_fan(c, v);
     auto across = [&](Index w) {
-      const Vec3 d = V.row(w).transpose() - q;
+      const Vec3 d = g.V.row(w).transpose() - q;
       return Vec3(d - t * d.dot(t));
     };
     const Vec3 u = across(v);
     Vec3 a_in = Vec3::Zero(), a_out = Vec3::Zero();
-    for (const Index* w = nbr.begin(v); w != nbr.end(v); ++w) {
-      if (on_loop[static_cast<size_t>(*w)] || comp[static_cast<size_t>(*w)] < 0) continue;
-      const Vec3 d = across(*w);
+    for (const Index w : g.nbr[v]) {
+      if (loop.on_loop[static_cast<size_t>(w)] || pieces.label[static_cast<size_t>(w)] < 0) continue;
+      const Vec3 d = across(w);
       if (d.norm() <= 0) continue;
-      (inside[static_cast<size_t>(*w)] ? a_in : a_out) += d.normalized();
+      (inside[static_cast<size_t>(w)] ? a_in : a_out) += d.normalized();
     }
     const double un = u.norm();
-    if (un <= 1e-9 * h) {
+    if (un <= 1e-9 * g.h) {
       loop_inside[i] = 0;  // on the curve: a border vertex
     } else if (a_in.norm() > 0 && a_out.norm() > 0) {
       loop_inside[i] = u.dot(a_in.normalized()) > u.dot(a_out.normalized());
@@ -478,19 +410,83 @@ CurveRegion find_region(const TriangleMesh& mesh, const Points& closed_curve_mm,
     } else if (a_out.norm() > 0) {
       loop_inside[i] = u.dot(a_out) < 0;
     } else {
-      loop_inside[i] = inside2d(v);
+      loop_inside[i] = plane.contains(g.V.row(v).transpose());
     }
   }
-  for (size_t i = 0; i < loop.size(); ++i) inside[static_cast<size_t>(loop[i])] = loop_inside[i];
+  for (size_t i = 0; i < loop.vertices.size(); ++i) inside[static_cast<size_t>(loop.vertices[i])] = loop_inside[i];
+}
 
-  for (Index v = 0; v < nv; ++v)
+/// curve_region; with `border`, also the nearest point of the curve (its feet on the surface)
+/// to each loop vertex, in the order of CurveRegion::loop.
+CurveRegion find_region(const TriangleMesh& mesh, const Points& closed_curve_mm, const CurveRegionOptions& options,
+                        std::vector<Vec3>* border) {
+  const Points C = checked_curve(mesh, closed_curve_mm, options);
+  const SurfaceGraph g(mesh);
+  SampledCurve curve = sample_curve(C, g.h);
+  CurvePlane plane = best_fit_plane(curve.S);
+  const SnappedCurve snapped = snap_to_surface(g, curve.S, options.max_curve_distance_mm + 4 * g.h);
+  // From here on the curve is its samples' feet on the surface (the closest surface point, on the
+  // triangles around the nearest vertex): a curve drawn on a scan lies a few mm off a fit of it,
+  // and off the surface its sides would be blurred where the surface is steep.
+  curve.S.resize(static_cast<Eigen::Index>(snapped.feet.size()), 3);
+  for (size_t i = 0; i < snapped.feet.size(); ++i) curve.S.row(static_cast<Eigen::Index>(i)) = snapped.feet[i].transpose();
+  plane.set_polygon(curve.S);
+  CurveRegion out;
+  out.mean_curve_distance_mm = snapped.distance_sum / static_cast<double>(snapped.vertices.size());
+  if (out.mean_curve_distance_mm > options.max_curve_distance_mm)
+    fail("the curve is " + fmt(out.mean_curve_distance_mm) + " mm from the surface on average (more than " +
+         fmt(options.max_curve_distance_mm) + " mm: another frame or units?)");
+
+  const EdgeLoop loop = closed_edge_loop(g, on_main_piece(g, snapped.vertices));
+  const Pieces pieces = pieces_without_loop(g, loop);
+  std::vector<char> inside = inside_pieces(g, loop, pieces, plane);
+  curve.grid = std::make_unique<spatial::KnnIndex>(curve.S);
+  classify_loop_vertices(g, curve, plane, loop, pieces, inside);
+
+  for (Index v = 0; v < g.nv; ++v)
     if (inside[static_cast<size_t>(v)]) out.inside.push_back(v);
-  if (out.inside.empty()) throw InvalidInput(std::string(who) + ": the curve encloses no vertex of the mesh");
-  out.loop = loop;
+  if (out.inside.empty()) fail("the curve encloses no vertex of the mesh");
+  out.loop = loop.vertices;
   std::sort(out.loop.begin(), out.loop.end());
   if (border)
-    for (Index v : out.loop) border->push_back(curve.nearest(V.row(v).transpose()).first);
+    for (const Index v : out.loop) border->push_back(curve.nearest(g.V.row(v).transpose()).first);
   return out;
+}
+
+/// The patch under a region: the triangles touching the region ∪ loop grown by `grow` mm along
+/// the edges and by one more ring (two rings of triangles around the grown region in all), with
+/// the vertices they use renumbered in order.
+TriangleMesh patch_around(const TriangleMesh& mesh, const CurveRegion& region, double grow) {
+  const Index nv = mesh.num_vertices();
+  const mesh::AdjacencyLists nbr = mesh::vertex_neighbours(mesh);
+  std::vector<Index> sources = region.inside;
+  sources.insert(sources.end(), region.loop.begin(), region.loop.end());
+  const std::vector<double> dist = mesh::edge_distances(mesh.V, nbr, sources, grow);
+  // core: the grown region and one ring; the patch's triangles touch it (two rings in all).
+  std::vector<char> core(static_cast<size_t>(nv), 0);
+  for (Index v = 0; v < nv; ++v)
+    if (std::isfinite(dist[static_cast<size_t>(v)])) {
+      core[static_cast<size_t>(v)] = 1;
+      for (const Index w : nbr[v]) core[static_cast<size_t>(w)] = 1;
+    }
+  std::vector<Eigen::Index> faces;
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
+    if (core[static_cast<size_t>(mesh.F(f, 0))] || core[static_cast<size_t>(mesh.F(f, 1))] || core[static_cast<size_t>(mesh.F(f, 2))])
+      faces.push_back(f);
+  std::vector<Index> remap(static_cast<size_t>(nv), -1);
+  for (const Eigen::Index f : faces)
+    for (int k = 0; k < 3; ++k) remap[static_cast<size_t>(mesh.F(f, k))] = 0;
+  Index n_patch = 0;
+  for (Index v = 0; v < nv; ++v)
+    if (remap[static_cast<size_t>(v)] == 0) remap[static_cast<size_t>(v)] = n_patch++;
+  TriangleMesh patch;
+  patch.V.resize(n_patch, 3);
+  for (Index v = 0; v < nv; ++v)
+    if (remap[static_cast<size_t>(v)] >= 0) patch.V.row(remap[static_cast<size_t>(v)]) = mesh.V.row(v);
+  patch.F.resize(static_cast<Eigen::Index>(faces.size()), 3);
+  for (size_t i = 0; i < faces.size(); ++i)
+    for (int k = 0; k < 3; ++k) patch.F(static_cast<Eigen::Index>(i), k) = remap[static_cast<size_t>(mesh.F(faces[i], k))];
+  return patch;
 }
 
 }  // namespace
@@ -504,11 +500,6 @@ std::vector<Index> vertices_inside_curve(const TriangleMesh& mesh, const Points&
   return curve_region(mesh, closed_curve_mm, options).inside;
 }
 
-namespace {
-
-/// Midpoint (1 → 4) subdivision: the same surface with edges half as long, orientation kept.
-}  // namespace
-
 CurveVolume curve_volume(const TriangleMesh& mesh, const Points& closed_curve_mm, const CurveVolumeOptions& options) {
   options.validate();
   const CurveRegion region = curve_region(mesh, closed_curve_mm, options.region);
@@ -517,55 +508,7 @@ CurveVolume curve_volume(const TriangleMesh& mesh, const Points& closed_curve_mm
   out.mean_curve_distance_mm = region.mean_curve_distance_mm;
 
   // The patch under the curve: region ∪ loop, grown by the margin (generously) and two rings.
-  const Index nv = mesh.num_vertices();
-  const Csr nbr = vertex_neighbours(mesh.F, nv);
-  std::vector<double> dist(static_cast<size_t>(nv), kInf);
-  using Item = std::pair<double, Index>;
-  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
-  for (const auto* list : {&region.inside, &region.loop})
-    for (Index v : *list)
-      if (dist[static_cast<size_t>(v)] > 0) {
-        dist[static_cast<size_t>(v)] = 0;
-        queue.push({0.0, v});
-      }
-  const double grow = 1.5 * options.volume.margin_mm;
-  while (!queue.empty()) {
-    const auto [d, v] = queue.top();
-    queue.pop();
-    if (d > dist[static_cast<size_t>(v)]) continue;
-    for (const Index* w = nbr.begin(v); w != nbr.end(v); ++w) {
-      const double dw = d + (mesh.V.row(v) - mesh.V.row(*w)).norm();
-      if (dw <= grow && dw < dist[static_cast<size_t>(*w)]) {
-        dist[static_cast<size_t>(*w)] = dw;
-        queue.push({dw, *w});
-      }
-    }
-  }
-  // core: the grown region and one ring; the patch's triangles touch it (two rings in all).
-  std::vector<char> core(static_cast<size_t>(nv), 0);
-  for (Index v = 0; v < nv; ++v)
-    if (std::isfinite(dist[static_cast<size_t>(v)])) {
-      core[static_cast<size_t>(v)] = 1;
-      for (const Index* w = nbr.begin(v); w != nbr.end(v); ++w) core[static_cast<size_t>(*w)] = 1;
-    }
-  std::vector<Eigen::Index> faces;
-  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f)
-    if (core[static_cast<size_t>(mesh.F(f, 0))] || core[static_cast<size_t>(mesh.F(f, 1))] || core[static_cast<size_t>(mesh.F(f, 2))])
-      faces.push_back(f);
-  std::vector<Index> remap(static_cast<size_t>(nv), -1);
-  for (Eigen::Index f : faces)
-    for (int k = 0; k < 3; ++k) remap[static_cast<size_t>(mesh.F(f, k))] = 0;
-  Index n_patch = 0;
-  for (Index v = 0; v < nv; ++v)
-    if (remap[static_cast<size_t>(v)] == 0) remap[static_cast<size_t>(v)] = n_patch++;
-  TriangleMesh patch;
-  patch.V.resize(n_patch, 3);
-  for (Index v = 0; v < nv; ++v)
-    if (remap[static_cast<size_t>(v)] >= 0) patch.V.row(remap[static_cast<size_t>(v)]) = mesh.V.row(v);
-  patch.F.resize(static_cast<Eigen::Index>(faces.size()), 3);
-  for (size_t i = 0; i < faces.size(); ++i)
-    for (int k = 0; k < 3; ++k) patch.F(static_cast<Eigen::Index>(i), k) = remap[static_cast<size_t>(mesh.F(faces[i], k))];
-
+  TriangleMesh patch = patch_around(mesh, region, 1.5 * options.volume.margin_mm);
   while (options.target_edge_mm > 0 && mean_edge_length(patch.V, patch.F) > options.target_edge_mm &&
          4 * static_cast<double>(patch.num_faces()) <= static_cast<double>(options.max_refined_faces)) {
     patch = mesh::subdivide(patch, /*loop=*/false);

@@ -101,26 +101,6 @@ std::vector<std::uint8_t> triangle_flags(const TriangleMesh& mesh,
   return flags;
 }
 
-Points area_weighted_vertex_normals(const TriangleMesh& mesh) {
-  Points N = Points::Zero(mesh.num_vertices(), 3);
-  for (Index f = 0; f < mesh.num_faces(); ++f) {
-    const Vec3 a = mesh.V.row(mesh.F(f, 0));
-    const Vec3 b = mesh.V.row(mesh.F(f, 1));
-    const Vec3 c = mesh.V.row(mesh.F(f, 2));
-    const Vec3 n = (b - a).cross(c - a);
-    for (int k = 0; k < 3; ++k) N.row(mesh.F(f, k)) += n.transpose();
-  }
-  for (Index v = 0; v < N.rows(); ++v) {
-    const double len = N.row(v).norm();
-    if (len > 0.0 && std::isfinite(len)) {
-      N.row(v) /= len;
-    } else {
-      N.row(v).setZero();
-    }
-  }
-  return N;
-}
-
 std::vector<PrimBox> triangle_boxes(const TriangleMesh& mesh) {
   std::vector<PrimBox> boxes(mesh.num_faces());
   for (Index f = 0; f < mesh.num_faces(); ++f) {

@@ -1,7 +1,7 @@
 #pragma once
 /// \file Per-triangle and per-vertex tables the spatial indices precompute at build time:
-/// validation, degenerate/boundary flags, area-weighted vertex normals, primitive boxes and a
-/// Morton order for batched queries (private to the spatial layer).
+/// validation, degenerate/boundary flags, primitive boxes and a Morton order for batched queries
+/// (private to the spatial layer; vertex normals come from mesh/normals.h).
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -27,10 +27,6 @@ void validate_triangle_mesh(const TriangleMesh& mesh, const std::string& who);
 /// `vertex_boundary` is given it receives 1 per vertex lying on such an edge, else 0 (#V).
 std::vector<std::uint8_t> triangle_flags(const TriangleMesh& mesh,
                                          std::vector<std::uint8_t>* vertex_boundary);
-
-/// #V by 3 unit vertex normals: sum over incident faces of the unnormalised face normal
-/// (cross product = twice the area times the unit normal), normalised; zero when it vanishes.
-Points area_weighted_vertex_normals(const TriangleMesh& mesh);
 
 /// Axis-aligned box of every triangle (#F).
 std::vector<PrimBox> triangle_boxes(const TriangleMesh& mesh);
