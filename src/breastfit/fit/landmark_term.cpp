@@ -12,12 +12,7 @@ double LandmarkTerm::evaluate(const TermContext& ctx, double weight, NormalEquat
   for (const auto& t : ctx.landmarks) {
     if (sliding_landmark_region(t.name)) continue;  // the sliding-landmark term's
     const SurfacePoint& sp = ctx.ev.model().landmarks[t.model_landmark].point;
-    const Vec3 d = ctx.ev.surface_point(sp) - t.position;
-    const double w = weight * t.weight;
-    cost += w * d.squaredNorm();
-    if (!eq) continue;
-    ctx.ev.surface_point_jacobian(sp, jac);
-    add_point_rows(jac, d, w, *eq, vals);
+    cost += add_surface_point_residual(ctx.ev, sp, t.position, weight * t.weight, eq, jac, vals);
   }
   return cost;
 }

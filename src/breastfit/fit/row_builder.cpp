@@ -12,6 +12,17 @@ void add_point_rows(const model::PointJacobian& jac, const Vec3& d, double w, No
   }
 }
 
+double add_surface_point_residual(const model::PoseEvaluator& ev, const SurfacePoint& point, const Vec3& target,
+                                  double w, NormalEquations* eq, model::PointJacobian& jac,
+                                  std::vector<double>& vals) {
+  const Vec3 d = ev.surface_point(point) - target;
+  if (eq) {
+    ev.surface_point_jacobian(point, jac);
+    add_point_rows(jac, d, w, *eq, vals);
+  }
+  return w * d.squaredNorm();
+}
+
 void add_plane_row(const model::PointJacobian& jac, const Vec3& d, const Vec3& n, double w, NormalEquations& eq,
                    std::vector<double>& vals) {
   const int nnz = static_cast<int>(jac.params.size());

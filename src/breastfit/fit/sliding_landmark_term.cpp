@@ -23,12 +23,7 @@ double SlidingLandmarkTerm::evaluate(const TermContext& ctx, double weight, Norm
     if (!sliding_landmark_region(t.name)) continue;  // the landmark term's
     // Before the first update (or on a model without the region): the stored landmark point.
     const SurfacePoint& sp = i < points_.size() && points_[i] ? *points_[i] : ctx.ev.model().landmarks[t.model_landmark].point;
-    const Vec3 d = ctx.ev.surface_point(sp) - t.position;
-    const double w = weight * t.weight;
-    cost += w * d.squaredNorm();
-    if (!eq) continue;
-    ctx.ev.surface_point_jacobian(sp, jac);
-    add_point_rows(jac, d, w, *eq, vals);
+    cost += add_surface_point_residual(ctx.ev, sp, t.position, weight * t.weight, eq, jac, vals);
   }
   return cost;
 }
