@@ -30,6 +30,7 @@ struct TermContext {
   const std::vector<ReverseCorrespondence>& reverse;  ///< scan sample → model (reverse term)
   const std::vector<LandmarkTarget>& landmarks;       ///< input landmarks matched to the model
   const FitOptions& options;
+  bool robust_landmarks = false;  ///< this stage down-weights landmarks beyond their check tolerance (landmark_check.h)
 };
 
 class EnergyTerm {

@@ -66,6 +66,9 @@ struct StageOptions {
   int max_iterations = 10;   ///< outer (correspondence) iterations: the stage's cap
   int vertex_stride = 1;     ///< use every n-th model vertex for the data term (speed in early stages)
   bool use_data = true;      ///< false: landmarks and priors only (no correspondences)
+  /// Landmarks beyond their check tolerance are down-weighted (fit/landmark_check.h). Off in the
+  /// first stages, where correct landmarks can still be far (arms not yet abducted).
+  bool robust_landmarks = false;
 };
 
 /// The Levenberg–Marquardt loop (stage_minimizer.h, lm_strategy.h) and its convergence tests.
@@ -109,15 +112,18 @@ struct FitOptions {
   /// where closest points alone would latch onto the wrong surface. Skipped without landmarks.
   StageOptions landmark_pose{"landmark_pose", true, true, false, 8, 1, false};
   StageOptions rigid{"rigid", true, false, false, 8, 4};
-  StageOptions pose{"pose", true, true, false, 10, 2};
-  StageOptions shape{"shape", true, true, true, 10, 2};
-  StageOptions refine{"refine", true, true, true, 3, 1};
+  StageOptions pose{"pose", true, true, false, 10, 2, true, true};
+  StageOptions shape{"shape", true, true, true, 10, 2, true, true};
+  StageOptions refine{"refine", true, true, true, 3, 1, true, true};
   SolverOptions solver;
   SurfaceDetailOptions detail;
   int max_blendshapes = -1;          ///< use only the first n blendshapes (experiments); < 0 = all
   int max_landmarks = -1;            ///< use only the first n landmarks in the paper's order; < 0 = all
   bool use_landmarks = true;         ///< false: landmark-free fit (landmarks only reported)
   double landmark_warning_mm = 30.0; ///< warn when an input landmark is farther than this from the scan
+  /// A given landmark farther than this from the fitted model's landmark is flagged and, in the
+  /// stages with robust_landmarks, down-weighted (×2 for the mid-axillary points; landmark_check.h).
+  double landmark_check_mm = 15.0;
   double max_surface_mae_mm = 8.0;   ///< a final kept-correspondence MAE above this = not usable
   double min_kept_fraction = 0.25;   ///< fewer kept correspondences than this share = not usable
 

@@ -38,7 +38,8 @@ const std::vector<Field<StageOptions>>& fields() {
   using S = StageOptions;
   static const std::vector<Field<S>> f = {{"global", &S::global},       {"bones", &S::bones},
                                           {"blendshapes", &S::blendshapes}, {"max_iterations", &S::max_iterations},
-                                          {"vertex_stride", &S::vertex_stride}, {"use_data", &S::use_data}};
+                                          {"vertex_stride", &S::vertex_stride}, {"use_data", &S::use_data},
+                                          {"robust_landmarks", &S::robust_landmarks}};
   return f;
 }
 
@@ -72,6 +73,7 @@ const std::vector<Field<FitOptions>>& fields() {
   static const std::vector<Field<F>> f = {
       {"max_blendshapes", &F::max_blendshapes}, {"max_landmarks", &F::max_landmarks},
       {"use_landmarks", &F::use_landmarks}, {"landmark_warning_mm", &F::landmark_warning_mm},
+      {"landmark_check_mm", &F::landmark_check_mm},
       {"max_surface_mae_mm", &F::max_surface_mae_mm}, {"min_kept_fraction", &F::min_kept_fraction}};
   return f;
 }

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "breastfit/fit/correspondences.h"
+#include "breastfit/fit/landmark_check.h"
 
 namespace breastfit::fit {
 
@@ -99,6 +100,7 @@ struct FitSummary {
   std::string initialization;         ///< "landmarks" or "landmark-free"
   int landmarks_used = 0;
   DetailSummary detail;
+  std::vector<LandmarkCheck> landmark_checks;  ///< every landmark used, after the fit
   std::vector<std::string> warnings;
   std::vector<PhaseTime> timings;     ///< in order; the pipeline adds its own phases around the fit's
   /// The fit's own wall time: initialisation, stages and surface detail (register_template); the

@@ -23,6 +23,14 @@ nlohmann::json timings_json(const std::vector<PhaseTime>& timings) {
   return out;
 }
 
+nlohmann::json landmark_checks_json(const std::vector<LandmarkCheck>& checks) {
+  nlohmann::json out = nlohmann::json::object();
+  for (const auto& c : checks)
+    out[c.name] = {{"distance_mm", c.distance_mm}, {"tolerance_mm", c.tolerance_mm}, {"factor", c.factor},
+                   {"flagged", c.flagged}};
+  return out;
+}
+
 nlohmann::json to_json(const FitSummary& s) {
   nlohmann::json stages = nlohmann::json::array();
   for (const auto& st : s.stages)
@@ -51,6 +59,7 @@ nlohmann::json to_json(const FitSummary& s) {
           {"surface_detail",
            {{"applied", s.detail.applied}, {"kept", s.detail.kept}, {"mean_abs_offset_mm", s.detail.mean_abs_mm},
             {"max_abs_offset_mm", s.detail.max_abs_mm}}},
+          {"landmark_check", landmark_checks_json(s.landmark_checks)},
           {"stages", stages},
           {"iteration_log", its},
           {"timings_s", timings_json(s.timings)},

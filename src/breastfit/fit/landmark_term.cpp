@@ -1,18 +1,33 @@
 #include "breastfit/fit/landmark_term.h"
 
+#include "breastfit/fit/fit_options.h"
+#include "breastfit/fit/landmark_check.h"
 #include "breastfit/fit/row_builder.h"
 #include "breastfit/fit/sliding_landmarks.h"
 
 namespace breastfit::fit {
 
+void LandmarkTerm::update(const TermContext& ctx) {
+  factors_.assign(ctx.landmarks.size(), 1.0);
+  if (!ctx.robust_landmarks) return;
+  for (size_t i = 0; i < ctx.landmarks.size(); ++i) {
+    const auto& t = ctx.landmarks[i];
+    if (sliding_landmark_region(t.name)) continue;
+    const double d = (ctx.ev.surface_point(ctx.ev.model().landmarks[t.model_landmark].point) - t.position).norm();
+    factors_[i] = robust_landmark_factor(d, landmark_check_tolerance_mm(t.name, ctx.options.landmark_check_mm));
+  }
+}
+
 double LandmarkTerm::evaluate(const TermContext& ctx, double weight, NormalEquations* eq) const {
   double cost = 0.0;
   model::PointJacobian jac;
   std::vector<double> vals;
-  for (const auto& t : ctx.landmarks) {
+  for (size_t i = 0; i < ctx.landmarks.size(); ++i) {
+    const auto& t = ctx.landmarks[i];
     if (sliding_landmark_region(t.name)) continue;  // the sliding-landmark term's
     const SurfacePoint& sp = ctx.ev.model().landmarks[t.model_landmark].point;
-    cost += add_surface_point_residual(ctx.ev, sp, t.position, weight * t.weight, eq, jac, vals);
+    const double factor = i < factors_.size() ? factors_[i] : 1.0;
+    cost += add_surface_point_residual(ctx.ev, sp, t.position, weight * t.weight * factor, eq, jac, vals);
   }
   return cost;
 }

@@ -9,7 +9,12 @@ namespace breastfit::fit {
 
 class LandmarkTerm final : public EnergyTerm {
  public:
+  /// Robust factors (landmark_check.h) at the current pose, when the stage asks for them.
+  void update(const TermContext& ctx) override;
   double evaluate(const TermContext& ctx, double weight, NormalEquations* eq) const override;
+
+ private:
+  std::vector<double> factors_;  // per ctx.landmarks entry
 };
 
 TermSpec landmark_term_spec();

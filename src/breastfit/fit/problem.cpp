@@ -21,7 +21,9 @@ Problem::Problem(const model::RiggedModel& model, ScanTarget& scan, const FitOpt
 
 Problem::~Problem() = default;
 
-TermContext Problem::context() const { return {ev_, pairs_, reverse_pairs_, landmarks_, options_}; }
+TermContext Problem::context() const {
+  return {ev_, pairs_, reverse_pairs_, landmarks_, options_, robust_landmarks_};
+}
 
 void Problem::update_correspondences(double max_dist, int stride, bool with_reverse) {
   const Points N = mesh::vertex_normals(ev_.vertices(), model_.rest.F);
@@ -41,7 +43,8 @@ void Problem::clear_correspondences() {
   reverse_stats_ = CorrespondenceStats{};
 }
 
-void Problem::update_terms() {
+void Problem::update_terms(bool robust_landmarks) {
+  robust_landmarks_ = robust_landmarks;
   const TermContext ctx = context();
   for (auto& t : terms_) t.term->update(ctx);
 }

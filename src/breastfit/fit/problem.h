@@ -32,8 +32,9 @@ class Problem {
   void update_correspondences(double max_distance_mm, int stride, bool with_reverse);
   /// Drops all correspondences (stages that use landmarks and priors only).
   void clear_correspondences();
-  /// Lets every term re-choose what it holds fixed (EnergyTerm::update) at the current pose.
-  void update_terms();
+  /// Lets every term re-choose what it holds fixed (EnergyTerm::update) at the current pose;
+  /// `robust_landmarks`: the stage down-weights landmarks beyond their tolerance.
+  void update_terms(bool robust_landmarks = false);
   /// Energy at the evaluator's current parameters; with `eq`, accumulates its normal equations.
   EnergyBreakdown evaluate(NormalEquations* eq) const;
   /// The energy of one term (1/λ included) at the current parameters; with `eq`, its rows only.
@@ -55,6 +56,7 @@ class Problem {
     std::unique_ptr<EnergyTerm> term;
   };
   TermContext context() const;
+  bool robust_landmarks_ = false;  // of the last update_terms
 
   const model::RiggedModel& model_;
   ScanTarget& scan_;

@@ -9,6 +9,7 @@
 #include "breastfit/fit/initialization.h"
 #include "breastfit/fit/stage_minimizer.h"
 #include "breastfit/fit/problem.h"
+#include "breastfit/fit/sliding_landmarks.h"
 #include "breastfit/mesh/landmark_names.h"
 
 namespace breastfit::fit {
@@ -60,6 +61,25 @@ Verdict judge(const FitOptions& options, const Problem& problem, Termination ter
   return {true, "usable: " + fmt(100 * kept_fraction, 0) + "% of the template within " +
                     fmt(options.correspondences.max_distance_end_mm) + " mm of the scan, mean distance " +
                     fmt(kept_mae_mm, 2) + " mm"};
+}
+
+// Flags on the final surface V (detail included: what the user sees); the robust factor is the one
+// the fit's last stage used, on the parametric model V_model.
+std::vector<LandmarkCheck> check_landmarks(const model::RiggedModel& model, const Points& V, const Points& V_model,
+                                           const model::PoseParams& params,
+                                           const std::vector<LandmarkTarget>& landmarks, const FitOptions& options) {
+  std::vector<LandmarkCheck> out;
+  for (const auto& t : landmarks) {
+    LandmarkCheck c;
+    c.name = t.name;
+    c.distance_mm = (model_landmark_position(model, t.model_landmark, V, params) - t.position).norm();
+    c.tolerance_mm = landmark_check_tolerance_mm(t.name, options.landmark_check_mm);
+    const double fitted = (model_landmark_position(model, t.model_landmark, V_model, params) - t.position).norm();
+    c.factor = options.refine.robust_landmarks ? robust_landmark_factor(fitted, c.tolerance_mm) : 1.0;
+    c.flagged = c.distance_mm > c.tolerance_mm;
+    out.push_back(c);
+  }
+  return out;
 }
 
 std::string termination_message(const FitSummary& s) {
@@ -126,7 +146,7 @@ FitResult register_template(const model::RiggedModel& model, ScanTarget& scan, s
   const bool use_reverse = options.weights.lambda("reverse") > 0 && options.correspondences.reverse_samples > 0;
   problem.evaluator().set_params(params);
   problem.update_correspondences(options.correspondences.max_distance_end_mm, 1, use_reverse);
-  problem.update_terms();
+  problem.update_terms(options.refine.robust_landmarks);
   summary.final_energy = problem.evaluate(nullptr);
   summary.final_correspondences = problem.stats();
   summary.final_reverse_correspondences = problem.reverse_stats();
@@ -150,6 +170,14 @@ FitResult register_template(const model::RiggedModel& model, ScanTarget& scan, s
     summary.detail = {true, d.kept, d.mean_abs_mm, d.max_abs_mm};
     summary.timings.push_back({"surface_detail", phase.seconds()});
   }
+  // Checked on the final surface (detail included): what the user sees.
+  summary.landmark_checks = check_landmarks(model, result.vertices, result.model_vertices, params, landmarks, options);
+  for (const auto& c : summary.landmark_checks)
+    if (c.flagged)
+      summary.warnings.push_back(
+          "landmark '" + c.name + "' is " + fmt(c.distance_mm) + " mm from the fitted model's landmark (tolerance " +
+          fmt(c.tolerance_mm, 0) + " mm): check it" +
+          (c.factor < 1 ? "; it was down-weighted in the fit (weight x" + fmt(c.factor, 2) + ")" : ""));
   result.landmarks = landmarks;
   summary.seconds = timer.seconds();
   return result;

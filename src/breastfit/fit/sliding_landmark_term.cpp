@@ -1,5 +1,7 @@
 #include "breastfit/fit/sliding_landmark_term.h"
 
+#include "breastfit/fit/fit_options.h"
+#include "breastfit/fit/landmark_check.h"
 #include "breastfit/fit/row_builder.h"
 #include "breastfit/fit/sliding_landmarks.h"
 
@@ -9,9 +11,16 @@ void SlidingLandmarkTerm::update(const TermContext& ctx) {
   const auto& model = ctx.ev.model();
   const Vec3 up = posed_vertical_axis(model, ctx.ev.params());
   points_.assign(ctx.landmarks.size(), std::nullopt);
-  for (size_t i = 0; i < ctx.landmarks.size(); ++i)
-    if (const auto region = sliding_landmark_region(ctx.landmarks[i].name))
-      points_[i] = lowest_region_point(model, ctx.ev.vertices(), up, *region);
+  factors_.assign(ctx.landmarks.size(), 1.0);
+  for (size_t i = 0; i < ctx.landmarks.size(); ++i) {
+    const auto& t = ctx.landmarks[i];
+    const auto region = sliding_landmark_region(t.name);
+    if (!region) continue;
+    points_[i] = lowest_region_point(model, ctx.ev.vertices(), up, *region);
+    if (!ctx.robust_landmarks || !points_[i]) continue;
+    const double d = (ctx.ev.surface_point(*points_[i]) - t.position).norm();
+    factors_[i] = robust_landmark_factor(d, landmark_check_tolerance_mm(t.name, ctx.options.landmark_check_mm));
+  }
 }
 
 double SlidingLandmarkTerm::evaluate(const TermContext& ctx, double weight, NormalEquations* eq) const {
@@ -23,7 +32,8 @@ double SlidingLandmarkTerm::evaluate(const TermContext& ctx, double weight, Norm
     if (!sliding_landmark_region(t.name)) continue;  // the landmark term's
     // Before the first update (or on a model without the region): the stored landmark point.
     const SurfacePoint& sp = i < points_.size() && points_[i] ? *points_[i] : ctx.ev.model().landmarks[t.model_landmark].point;
-    cost += add_surface_point_residual(ctx.ev, sp, t.position, weight * t.weight, eq, jac, vals);
+    const double factor = i < factors_.size() ? factors_[i] : 1.0;
+    cost += add_surface_point_residual(ctx.ev, sp, t.position, weight * t.weight * factor, eq, jac, vals);
   }
   return cost;
 }

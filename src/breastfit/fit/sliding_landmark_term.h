@@ -18,6 +18,7 @@ class SlidingLandmarkTerm final : public EnergyTerm {
 
  private:
   std::vector<std::optional<SurfacePoint>> points_;  // per ctx.landmarks entry, chosen by update()
+  std::vector<double> factors_;                      // robust factors (landmark_check.h), by update()
 };
 
 TermSpec sliding_landmark_term_spec();

@@ -82,7 +82,7 @@ class StageRun {
       problem_.update_correspondences(max_dist, stage_.vertex_stride, use_reverse && stage_.blendshapes);
     else
       problem_.clear_correspondences();
-    problem_.update_terms();
+    problem_.update_terms(stage_.robust_landmarks);
   }
 
   // Damped steps until one lowers the energy enough (or the attempts run out).

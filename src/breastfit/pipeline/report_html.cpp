@@ -30,8 +30,6 @@ std::string hex(render::Rgb c) {
   return buf;
 }
 
-/// Landmark errors at or above this are flagged in the per-landmark table, mm.
-constexpr double kLandmarkCheckMm = 10.0;
 
 constexpr std::string_view kStyle = R"(
 body { font-family: "Helvetica Neue", Arial, sans-serif; color: #1e1e1e; max-width: 1000px; margin: 1.5em auto;
@@ -171,12 +169,20 @@ void registration_table(std::string& h, const RegisterResult& r, const ReportFig
 void landmarks_table(std::string& h, const RegisterResult& r) {
   if (r.landmarks.names.empty()) return;
   h += "<h2>Landmarks</h2>\n<p class=\"note\">Distance between each fitted landmark and the landmark given on the "
-       "scan. Errors of " + num(kLandmarkCheckMm, 0) + " mm or more are marked: check the placement of that "
-       "landmark on the scan.</p>\n<table>\n<tr><th>landmark</th><th>error (mm)</th><th></th></tr>\n";
+       "scan. A landmark farther than its tolerance (15 mm; 30 mm for the mid-axillary points, which mark a line "
+       "on skin that slides with the arm) is marked: check its placement on the scan. The fit gives such a "
+       "landmark less weight.</p>\n<table>\n<tr><th>landmark</th><th>error (mm)</th><th></th></tr>\n";
   for (size_t i = 0; i < r.landmarks.names.size(); ++i) {
     const double d = r.landmarks.distances_mm[i];
+    const fit::LandmarkCheck* check = nullptr;
+    for (const auto& c : r.fit.summary.landmark_checks)
+      if (c.name == r.landmarks.names[i]) check = &c;
     h += "<tr><td>" + html_escape(r.landmarks.names[i]) + "</td><td class=\"n\">" + num(d, 1) + "</td><td>" +
-         (d >= kLandmarkCheckMm ? "<span class=\"badge check\">check</span>" : "") + "</td></tr>\n";
+         (check && check->flagged
+              ? "<span class=\"badge check\">check</span> <span class=\"note\">beyond " +
+                    num(check->tolerance_mm, 0) + " mm</span>"
+              : "") +
+         "</td></tr>\n";
   }
   h += "</table>\n";
 }

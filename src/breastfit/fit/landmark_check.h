@@ -1,0 +1,37 @@
+#pragma once
+/// \file Checking the landmarks a person placed against the fitted anatomy, and the robust weight
+/// that keeps one bad click from dragging the fit.
+///
+/// A landmark's *check distance* is the distance between the landmark given on the scan and the
+/// fitted model's landmark (the sliding definition for the lowest breast points). On the 14
+/// benchmark cases with their landmarks as given, it stays ≤ 4.2 mm for the material and sliding
+/// landmarks and ≤ 22 mm for the mid-axillary points (line landmarks on skin that slides with the
+/// arm, weighted 0.1). Beyond a tolerance — FitOptions::landmark_check_mm (15 mm), twice that for
+/// the mid-axillary points — a landmark is flagged, and during the stages with
+/// StageOptions::robust_landmarks its weight is multiplied by (tolerance / distance)², held fixed
+/// while each step is solved (IRLS): its pull on the fit fades instead of growing with the error.
+#include <string>
+#include <vector>
+
+#include "breastfit/core/types.h"
+#include "breastfit/fit/landmark_target.h"
+
+namespace breastfit::fit {
+
+/// The check tolerance of a landmark (mm): `landmark_check_mm`, ×2 for the mid-axillary points.
+double landmark_check_tolerance_mm(const std::string& name, double landmark_check_mm);
+
+/// IRLS factor of a landmark at check distance `distance_mm`: 1 within the tolerance,
+/// (tolerance / distance)² beyond.
+double robust_landmark_factor(double distance_mm, double tolerance_mm);
+
+/// One given landmark after the fit.
+struct LandmarkCheck {
+  std::string name;
+  double distance_mm = 0;   ///< given landmark ↔ fitted model landmark
+  double tolerance_mm = 0;
+  double factor = 1;        ///< robust factor the fit's last stage gave it (1 = full weight)
+  bool flagged = false;     ///< distance beyond the tolerance: check this landmark
+};
+
+}  // namespace breastfit::fit
