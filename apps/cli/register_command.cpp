@@ -52,6 +52,7 @@ void register_register(CLI::App& app, int& exit_code) {
     req.scan = io::read_mesh(args->scan);
     req.scan_name = args->scan;
     req.units = parse_units_flag(args->units);
+    req.landmarks_name = args->landmarks;
     if (!args->landmarks.empty() && !args->no_landmarks) req.landmarks = io::read_landmarks(args->landmarks);
     req.model = std::make_shared<const model::RiggedModel>(load_template(args->template_path));
     const model::RiggedModel& model = *req.model;

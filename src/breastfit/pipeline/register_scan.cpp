@@ -7,6 +7,7 @@
 #include "breastfit/core/timer.h"
 #include "breastfit/fit/scan_target.h"
 #include "breastfit/model/template_library.h"
+#include "breastfit/pipeline/landmark_frame_check.h"
 #include "breastfit/fit/sliding_landmarks.h"
 #include "breastfit/mesh/landmark_names.h"
 
@@ -54,6 +55,11 @@ RegisterResult register_scan(const RegisterRequest& req, const fit::IterationCal
   Timer timer;  // from scan and landmarks in memory to fitted parameters
   fit::ScanTarget scan(out.scan.mesh_mm, options.correspondences.reverse_samples);
   out.timings.push_back({"index_build", timer.seconds()});
+  if (const auto d = diagnose_landmark_frame(landmarks_mm, scan))
+    throw InvalidInput(req.landmarks_name + ": the landmarks lie " + fmt(d->median_distance_mm) +
+                       " mm from the scan (median); they look " + d->mistake + ": undone, they would lie " +
+                       fmt(d->corrected_median_mm) +
+                       " mm from it. Check the file's coordinate system and units");
   out.fit = fit::register_template(model, scan, targets, options, on_iteration);
   out.time_s = timer.seconds();
   for (const auto& p : out.fit.summary.timings) out.timings.push_back(p);

@@ -26,6 +26,7 @@ struct RegisterRequest {
   std::string scan_name = "scan";              ///< for messages
   std::optional<mesh::Units> units;            ///< forced units (nullopt: detect)
   std::optional<LandmarkSet> landmarks;        ///< as read (nullopt: none given)
+  std::string landmarks_name = "landmarks";    ///< for messages (the landmark file)
   std::shared_ptr<const model::RiggedModel> model;  ///< the template (nullptr: the shipped default)
   fit::FitOptions options;
 };
