@@ -17,7 +17,7 @@ double BlendshapePrior::evaluate(const TermContext& ctx, double weight, NormalEq
 }
 
 TermSpec blendshape_prior_spec() {
-  return {"blendshapes", "λBS", 10.0, "1", "blendshape regulariser E_BS", false,
+  return {"blendshapes", "λBS", 10.0, "no unit", "blendshape regulariser E_BS", false,
           [] { return std::unique_ptr<EnergyTerm>(new BlendshapePrior); }};
 }
 

@@ -20,7 +20,7 @@ double ScalePrior::evaluate(const TermContext& ctx, double weight, NormalEquatio
 }
 
 TermSpec scale_prior_spec() {
-  return {"scale", "λS", 0.5, "1", "bone scale regulariser E_S", false,
+  return {"scale", "λS", 0.5, "no unit", "bone scale regulariser E_S", false,
           [] { return std::unique_ptr<EnergyTerm>(new ScalePrior); }};
 }
 
