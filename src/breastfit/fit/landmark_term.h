@@ -1,20 +1,38 @@
 #pragma once
-/// \file The landmark term (paper eq. 9) for material landmarks: squared distances between the
-/// model's landmark points and the landmarks placed on the scan,
-///   E_L = 1/λL · Σ_l w_l ‖L_l(θ) − ℓ_l‖²
-/// (w_l: landmark_weight). The lowest breast points are not material points: sliding_landmark_term.h.
+/// \file The landmark terms (paper eq. 9): squared distances between the model's landmark points
+/// and the landmarks placed on the scan,
+///   E_L = 1/λL · Σ_l w_l r_l ‖X_l(θ) − ℓ_l‖²
+/// (w_l: landmark_weight; r_l: the robust factor of landmark_check.h in the stages that ask for it).
+/// LandmarkTerm covers the material landmarks (X_l = the template's stored surface point); the
+/// lowest breast points are not material points: sliding_landmark_term.h.
+#include <optional>
+#include <vector>
+
 #include "breastfit/fit/energy_term.h"
 
 namespace breastfit::fit {
 
-class LandmarkTerm final : public EnergyTerm {
+/// What both landmark terms share: the residual loop and the robust factors. A derived term says
+/// which model point stands for input landmark i (nullopt: not this term's landmark).
+class LandmarkTermBase : public EnergyTerm {
  public:
-  /// Robust factors (landmark_check.h) at the current pose, when the stage asks for them.
-  void update(const TermContext& ctx) override;
   double evaluate(const TermContext& ctx, double weight, NormalEquations* eq) const override;
+
+ protected:
+  virtual std::optional<SurfacePoint> model_point(const TermContext& ctx, size_t i) const = 0;
+  /// Robust factors at the current pose (all 1 unless ctx.robust_landmarks).
+  void update_factors(const TermContext& ctx);
 
  private:
   std::vector<double> factors_;  // per ctx.landmarks entry
+};
+
+class LandmarkTerm final : public LandmarkTermBase {
+ public:
+  void update(const TermContext& ctx) override { update_factors(ctx); }
+
+ protected:
+  std::optional<SurfacePoint> model_point(const TermContext& ctx, size_t i) const override;
 };
 
 TermSpec landmark_term_spec();

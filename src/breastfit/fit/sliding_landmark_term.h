@@ -3,22 +3,23 @@
 /// lowest breast points. Their model point is re-chosen at every outer iteration (update) as the
 /// breast region's lowest vertex along the posed body's vertical axis, then held fixed while the
 /// step is solved:
-///   E_LS = 1/λLS · Σ_l w_l ‖X_l(θ) − ℓ_l‖²,  X_l = the chosen model point
+///   E_LS = 1/λLS · Σ_l w_l r_l ‖X_l(θ) − ℓ_l‖²,  X_l = the chosen model point
 /// Same default λ as the material landmarks (the paper's λL covers all 12).
 #include <optional>
 
-#include "breastfit/fit/energy_term.h"
+#include "breastfit/fit/landmark_term.h"
 
 namespace breastfit::fit {
 
-class SlidingLandmarkTerm final : public EnergyTerm {
+class SlidingLandmarkTerm final : public LandmarkTermBase {
  public:
   void update(const TermContext& ctx) override;
-  double evaluate(const TermContext& ctx, double weight, NormalEquations* eq) const override;
+
+ protected:
+  std::optional<SurfacePoint> model_point(const TermContext& ctx, size_t i) const override;
 
  private:
   std::vector<std::optional<SurfacePoint>> points_;  // per ctx.landmarks entry, chosen by update()
-  std::vector<double> factors_;                      // robust factors (landmark_check.h), by update()
 };
 
 TermSpec sliding_landmark_term_spec();
