@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include "breastfit/fit/registration.h"
+#include "breastfit/mesh/normals.h"
+#include "support/test_shapes.h"
 #include "breastfit/model/pose_evaluator.h"
 #include "support/toy_model.h"
 
@@ -22,6 +24,27 @@ TEST(LandmarkCheck, RobustFactorIsOneWithinTheToleranceAndFadesBeyond) {
   EXPECT_DOUBLE_EQ(robust_landmark_factor(150.0, 15.0), 0.01);
   // The weighted squared residual w·d² stays bounded by tolerance² beyond the tolerance.
   EXPECT_DOUBLE_EQ(robust_landmark_factor(60.0, 15.0) * 60.0 * 60.0, 225.0);
+}
+
+TEST(LandmarkCheck, FindsTheBreastTipOnTheScanNearTheFittedNipple) {
+  // The fitted model: a sphere (radius 60 mm) with its nipple at the front, (0, −60, 0), facing −y.
+  // The scan: the same sphere moved by (15, −20, 0): its tip along −y is (15, −80, 0).
+  const TriangleMesh model = test::sphere_mesh(60.0, Vec3::Zero(), 64, 128);
+  const TriangleMesh scan = test::sphere_mesh(60.0, Vec3(15, -20, 0), 64, 128);
+  const Points N = mesh::vertex_normals(model);
+  const auto tip = breast_tip_on_scan(scan.V, model.V, N, Vec3(0, -60, 0));
+  ASSERT_TRUE(tip);
+  EXPECT_LT((*tip - Vec3(15, -80, 0)).norm(), 3.0) << tip->transpose();
+  // No scan near the nipple: nothing found.
+  EXPECT_FALSE(breast_tip_on_scan(scan.V, model.V, N, Vec3(0, -500, 0)));
+}
+
+// The toy model's "breasts" are small bumps that random poses can turn into dents: no tip to
+// check its nipples against, so these tests switch the breast-tip check off.
+FitOptions toy_options() {
+  FitOptions o;
+  o.nipple_tip_check_mm = 1e3;
+  return o;
 }
 
 struct ToyScan {
@@ -49,10 +72,10 @@ const LandmarkCheck* find(const FitSummary& s, const std::string& name) {
 TEST(LandmarkCheck, LandmarksAsPlacedAreNotFlagged) {
   ToyScan c;
   ScanTarget scan(c.mesh, 300);
-  const FitResult r = register_template(c.m, scan, match_landmarks(c.m, c.landmarks()), FitOptions{});
+  const FitResult r = register_template(c.m, scan, match_landmarks(c.m, c.landmarks()), toy_options());
   ASSERT_EQ(r.summary.landmark_checks.size(), c.m.landmarks.size());
   for (const auto& check : r.summary.landmark_checks) {
-    EXPECT_FALSE(check.flagged) << check.name << " " << check.distance_mm;
+    EXPECT_FALSE(check.flagged) << check.name << " " << check.distance_mm << " tip " << check.anatomy_distance_mm;
     EXPECT_EQ(check.factor, 1.0) << check.name;
   }
 }
@@ -62,7 +85,7 @@ TEST(LandmarkCheck, AFarLandmarkIsFlaggedNamedAndDownWeighted) {
   auto named = c.landmarks();
   named[0].second += Vec3(0, 0, 80);  // the sternal notch clicked 80 mm too high (off the body)
   ScanTarget scan(c.mesh, 300);
-  const FitResult robust = register_template(c.m, scan, match_landmarks(c.m, named), FitOptions{});
+  const FitResult robust = register_template(c.m, scan, match_landmarks(c.m, named), toy_options());
   const LandmarkCheck* moved = find(robust.summary, named[0].first);
   ASSERT_NE(moved, nullptr);
   EXPECT_TRUE(moved->flagged) << moved->distance_mm;
@@ -74,7 +97,7 @@ TEST(LandmarkCheck, AFarLandmarkIsFlaggedNamedAndDownWeighted) {
     if (check.name != named[0].first) EXPECT_FALSE(check.flagged) << check.name;
 
   // Without the robust stages the bad landmark drags the fit further from the true surface.
-  FitOptions plain;
+  FitOptions plain = toy_options();
   for (StageOptions* s : plain.stages()) s->robust_landmarks = false;
   const FitResult dragged = register_template(c.m, scan, match_landmarks(c.m, named), plain);
   auto mean_distance = [&](const FitResult& r) {

@@ -124,6 +124,9 @@ struct FitOptions {
   /// A given landmark farther than this from the fitted model's landmark is flagged and, in the
   /// stages with robust_landmarks, down-weighted (×2 for the mid-axillary points; landmark_check.h).
   double landmark_check_mm = 15.0;
+  /// A given nipple farther than this from the breast's tip found on the scan is flagged
+  /// (landmark_check.h: breast_tip_on_scan; at most 13.3 mm on 30 benchmark cases as placed).
+  double nipple_tip_check_mm = 18.0;
   double max_surface_mae_mm = 8.0;   ///< a final kept-correspondence MAE above this = not usable
   double min_kept_fraction = 0.25;   ///< fewer kept correspondences than this share = not usable
 

@@ -26,8 +26,14 @@ nlohmann::json timings_json(const std::vector<PhaseTime>& timings) {
 nlohmann::json landmark_checks_json(const std::vector<LandmarkCheck>& checks) {
   nlohmann::json out = nlohmann::json::object();
   for (const auto& c : checks)
+  {
     out[c.name] = {{"distance_mm", c.distance_mm}, {"tolerance_mm", c.tolerance_mm}, {"factor", c.factor},
                    {"flagged", c.flagged}};
+    if (c.anatomy_distance_mm >= 0) {
+      out[c.name]["breast_tip_distance_mm"] = c.anatomy_distance_mm;
+      out[c.name]["breast_tip_tolerance_mm"] = c.anatomy_tolerance_mm;
+    }
+  }
   return out;
 }
 

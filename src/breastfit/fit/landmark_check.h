@@ -10,6 +10,7 @@
 /// the mid-axillary points — a landmark is flagged, and during the stages with
 /// StageOptions::robust_landmarks its weight is multiplied by (tolerance / distance)², held fixed
 /// while each step is solved (IRLS): its pull on the fit fades instead of growing with the error.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,7 +32,21 @@ struct LandmarkCheck {
   double distance_mm = 0;   ///< given landmark ↔ fitted model landmark
   double tolerance_mm = 0;
   double factor = 1;        ///< robust factor the fit's last stage gave it (1 = full weight)
-  bool flagged = false;     ///< distance beyond the tolerance: check this landmark
+  /// Nipples only: given landmark ↔ the breast's tip found on the scan (breast_tip_on_scan);
+  /// < 0 when not checked.
+  double anatomy_distance_mm = -1;
+  double anatomy_tolerance_mm = 0;
+  bool flagged = false;     ///< beyond a tolerance: check this landmark
 };
+
+/// The breast's tip on the scan near a fitted nipple: among the scan's vertices within
+/// `search_radius_mm` of the fitted model's nipple, the one farthest along the model's mean
+/// outward normal within 40 mm of the nipple. The fit can follow a wrongly placed nipple by
+/// sliding the breast's skin (the surface barely changes), so the nipple is checked against the
+/// scan's own geometry. On the 14 benchmark cases and 16 generated ones the tip lies 5–6 mm from
+/// the placed nipple on average, 13.3 mm at most. nullopt when no scan vertex is that close.
+std::optional<Vec3> breast_tip_on_scan(const Points& scan_vertices, const Points& model_vertices,
+                                       const Points& model_normals, const Vec3& model_nipple,
+                                       double search_radius_mm = 35.0);
 
 }  // namespace breastfit::fit

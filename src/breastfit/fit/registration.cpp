@@ -10,6 +10,7 @@
 #include "breastfit/fit/stage_minimizer.h"
 #include "breastfit/fit/problem.h"
 #include "breastfit/fit/sliding_landmarks.h"
+#include "breastfit/mesh/normals.h"
 #include "breastfit/mesh/landmark_names.h"
 
 namespace breastfit::fit {
@@ -66,9 +67,10 @@ Verdict judge(const FitOptions& options, const Problem& problem, Termination ter
 // Flags on the final surface V (detail included: what the user sees); the robust factor is the one
 // the fit's last stage used, on the parametric model V_model.
 std::vector<LandmarkCheck> check_landmarks(const model::RiggedModel& model, const Points& V, const Points& V_model,
-                                           const model::PoseParams& params,
+                                           const model::PoseParams& params, const ScanTarget& scan,
                                            const std::vector<LandmarkTarget>& landmarks, const FitOptions& options) {
   std::vector<LandmarkCheck> out;
+  const Points N = mesh::vertex_normals(V, model.rest.F);
   for (const auto& t : landmarks) {
     LandmarkCheck c;
     c.name = t.name;
@@ -77,6 +79,14 @@ std::vector<LandmarkCheck> check_landmarks(const model::RiggedModel& model, cons
     const double fitted = (model_landmark_position(model, t.model_landmark, V_model, params) - t.position).norm();
     c.factor = options.refine.robust_landmarks ? robust_landmark_factor(fitted, c.tolerance_mm) : 1.0;
     c.flagged = c.distance_mm > c.tolerance_mm;
+    if (t.name == "nipple_R" || t.name == "nipple_L") {
+      const Vec3 fitted_nipple = model_landmark_position(model, t.model_landmark, V, params);
+      if (const auto tip = breast_tip_on_scan(scan.mesh().V, V, N, fitted_nipple)) {
+        c.anatomy_distance_mm = (*tip - t.position).norm();
+        c.anatomy_tolerance_mm = options.nipple_tip_check_mm;
+        c.flagged = c.flagged || c.anatomy_distance_mm > c.anatomy_tolerance_mm;
+      }
+    }
     out.push_back(c);
   }
   return out;
@@ -171,13 +181,18 @@ FitResult register_template(const model::RiggedModel& model, ScanTarget& scan, s
     summary.timings.push_back({"surface_detail", phase.seconds()});
   }
   // Checked on the final surface (detail included): what the user sees.
-  summary.landmark_checks = check_landmarks(model, result.vertices, result.model_vertices, params, landmarks, options);
-  for (const auto& c : summary.landmark_checks)
-    if (c.flagged)
-      summary.warnings.push_back(
-          "landmark '" + c.name + "' is " + fmt(c.distance_mm) + " mm from the fitted model's landmark (tolerance " +
-          fmt(c.tolerance_mm, 0) + " mm): check it" +
-          (c.factor < 1 ? "; it was down-weighted in the fit (weight x" + fmt(c.factor, 2) + ")" : ""));
+  summary.landmark_checks =
+      check_landmarks(model, result.vertices, result.model_vertices, params, scan, landmarks, options);
+  for (const auto& c : summary.landmark_checks) {
+    if (!c.flagged) continue;
+    const bool by_model = c.distance_mm > c.tolerance_mm;
+    summary.warnings.push_back(
+        "landmark '" + c.name + "' is " +
+        (by_model ? fmt(c.distance_mm) + " mm from the fitted model's landmark (tolerance " + fmt(c.tolerance_mm, 0)
+                  : fmt(c.anatomy_distance_mm) + " mm from the breast's tip on the scan (tolerance " +
+                        fmt(c.anatomy_tolerance_mm, 0)) +
+        " mm): check it" + (c.factor < 1 ? "; it was down-weighted in the fit (weight x" + fmt(c.factor, 2) + ")" : ""));
+  }
   result.landmarks = landmarks;
   summary.seconds = timer.seconds();
   return result;
