@@ -73,6 +73,7 @@ TEST(FitDirectory, AppliesTheSurfaceDetailOfParamsJson) {
   fitted.V = fit::apply_surface_detail(posed, m.rest.F, offsets);
   fitted.F = m.rest.F;
   io::write_mesh(dir / "fitted.ply", fitted);
+  std::ofstream(dir / "report.json") << R"({"status": "ok", "units": "mm"})";
 
   const FitDirectory read = read_fit_directory(dir, &m);
   EXPECT_LT((read.fitted_mm.V - fitted.V).cwiseAbs().maxCoeff(), 1e-9);
@@ -84,6 +85,29 @@ TEST(FitDirectory, AppliesTheSurfaceDetailOfParamsJson) {
   doc["surface_detail"] = {{"offsets_mm", "none"}};
   std::ofstream(dir / "params.json") << doc.dump();
   EXPECT_THROW(read_fit_directory(dir, &m), IoError);
+}
+
+TEST(FitDirectory, RefusesAnIncompleteSetAndANotUsableFit) {
+  const model::RiggedModel m = test::make_toy_model();
+  const fs::path dir = test::temp_dir() / "fit";
+  fs::create_directories(dir);
+  model::write_params_json(dir / "params.json", m, model::PoseParams::identity(m));
+  // report.json is moved in last: without it the set is incomplete (an interrupted run).
+  try {
+    read_fit_directory(dir, &m);
+    ADD_FAILURE() << "no report.json accepted";
+  } catch (const IoError& e) {
+    EXPECT_NE(std::string(e.what()).find("incomplete output set: no report.json"), std::string::npos) << e.what();
+  }
+  std::ofstream(dir / "report.json") << R"({"status": "not_usable", "units": "mm"})";
+  try {
+    read_fit_directory(dir, &m);
+    ADD_FAILURE() << "a not-usable fit accepted";
+  } catch (const IoError& e) {
+    EXPECT_NE(std::string(e.what()).find("not usable"), std::string::npos) << e.what();
+  }
+  std::ofstream(dir / "report.json") << R"({"status": "ok", "units": "mm"})";
+  EXPECT_NO_THROW(read_fit_directory(dir, &m));
 }
 
 }  // namespace
