@@ -92,20 +92,18 @@ TEST(FitDirectory, RefusesAnIncompleteSetAndANotUsableFit) {
   const fs::path dir = test::temp_dir() / "fit";
   fs::create_directories(dir);
   model::write_params_json(dir / "params.json", m, model::PoseParams::identity(m));
+  const auto expect_refused = [&](const std::string& why) {
+    try {
+      read_fit_directory(dir, &m);
+      ADD_FAILURE() << "accepted, expected: " << why;
+    } catch (const IoError& e) {
+      EXPECT_NE(std::string(e.what()).find(why), std::string::npos) << e.what();
+    }
+  };
   // report.json is moved in last: without it the set is incomplete (an interrupted run).
-  try {
-    read_fit_directory(dir, &m);
-    ADD_FAILURE() << "no report.json accepted";
-  } catch (const IoError& e) {
-    EXPECT_NE(std::string(e.what()).find("incomplete output set: no report.json"), std::string::npos) << e.what();
-  }
+  expect_refused("incomplete output set: no report.json");
   std::ofstream(dir / "report.json") << R"({"status": "not_usable", "units": "mm"})";
-  try {
-    read_fit_directory(dir, &m);
-    ADD_FAILURE() << "a not-usable fit accepted";
-  } catch (const IoError& e) {
-    EXPECT_NE(std::string(e.what()).find("not usable"), std::string::npos) << e.what();
-  }
+  expect_refused("not usable");
   std::ofstream(dir / "report.json") << R"({"status": "ok", "units": "mm"})";
   EXPECT_NO_THROW(read_fit_directory(dir, &m));
 }
