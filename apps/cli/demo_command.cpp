@@ -59,6 +59,7 @@ void register_demo(CLI::App& app, int& exit_code) {
     const auto result = pipeline::register_scan(req, progress_printer(args->quiet));
     if (!result.usable()) {
       std::cerr << "breastfit: error: " << req.scan_name << ": " << result.fit.summary.message << "\n";
+      pipeline::write_register_failure(fit_dir, result, true, {});  // no stale fit of an earlier demo
       exit_code = kExitNotConverged;
       return;
     }

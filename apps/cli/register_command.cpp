@@ -1,8 +1,5 @@
 // breastfit register SCAN [--landmarks FILE] --out DIR: the paper's registration of the template.
-#include <fstream>
 #include <iostream>
-
-#include <nlohmann/json.hpp>
 
 #include "breastfit/core/errors.h"
 #include "breastfit/io/io.h"
@@ -10,7 +7,6 @@
 #include "breastfit/model/gltf_io.h"
 #include "breastfit/model/template_library.h"
 #include "breastfit/pipeline/register_outputs.h"
-#include "breastfit/pipeline/register_report_json.h"
 #include "breastfit/pipeline/register_scan.h"
 #include "command_support.h"
 #include "commands.h"
@@ -62,9 +58,9 @@ void register_register(CLI::App& app, int& exit_code) {
     const auto result = pipeline::register_scan(req, progress_printer(args->quiet));
     if (!result.usable()) {
       std::cerr << "breastfit: error: " << args->scan << ": " << result.fit.summary.message << "\n";
-      // Keep the evidence, but no fitted outputs that could be mistaken for a result.
-      fs::create_directories(args->out);
-      std::ofstream(fs::path(args->out) / "report.json") << pipeline::report_json(result).dump(1) << "\n";
+      // Keep the evidence, but no fitted outputs (not even the previous run's) that could be
+      // mistaken for a result.
+      pipeline::write_register_failure(args->out, result, args->force, inputs);
       exit_code = kExitNotConverged;
       return;
     }

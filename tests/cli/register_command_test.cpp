@@ -230,5 +230,41 @@ TEST(RegisterCommand, WritesAReportHtmlUnlessAskedNotTo) {
   EXPECT_EQ(log.find("report.html"), std::string::npos) << log;
 }
 
+
+TEST(RegisterCommand, AFailingRunLeavesOnlyItsReportNeverTheStaleFit) {
+  if (test::cli_path().empty()) GTEST_SKIP() << "CLI not built";
+  const fs::path c = synth_case(5, "mm");
+  const fs::path dir = test::temp_dir();
+  const fs::path out = dir / "out";
+  const std::string cmd = "register '" + (c / "scan.ply").string() + "' --landmarks '" +
+                          (c / "landmarks.mrk.json").string() + "' --quiet --out '" + out.string() + "'";
+  std::string log;
+  ASSERT_EQ(test::run_cli(cmd, &log), 0) << log;
+  ASSERT_TRUE(fs::exists(out / "fitted.ply"));
+  ASSERT_TRUE(fs::exists(out / "report.html"));
+  std::ofstream(out / "notes.txt") << "the surgeon's own file\n";
+  // A leftover staging directory of a killed run into the same --out.
+  const fs::path leftover = dir / ".out.breastfit-tmp-1-0";
+  fs::create_directories(leftover);
+  std::ofstream(leftover / "fitted.ply") << "partial";
+  // The same scan with a surface tolerance no fit can meet: not usable (exit 5).
+  std::ofstream(dir / "strict.json") << R"({"max_surface_mae_mm": 0.001})";
+  ASSERT_EQ(test::run_cli(cmd + " --force --config '" + (dir / "strict.json").string() + "'", &log), 5) << log;
+  for (const char* name : {"fitted.ply", "landmarks.mrk.json", "drawings.mrk.json", "drawings.ply", "drawings.obj",
+                           "scan_painted.ply", "params.json", "report.html"})
+    EXPECT_FALSE(fs::exists(out / name)) << name << " of the previous run is still there";
+  EXPECT_EQ(read_json(out / "report.json")["status"], "not_usable");
+  EXPECT_EQ(read_text(out / "notes.txt"), "the surgeon's own file\n");  // not ours: untouched
+  EXPECT_FALSE(fs::exists(leftover));
+  for (const auto& e : fs::directory_iterator(dir))
+    EXPECT_EQ(e.path().filename().string().find(".breastfit-tmp-"), std::string::npos) << e.path();
+  // `breastfit map` refuses the failed fit with a clear message.
+  EXPECT_NE(test::run_cli("map '" + (c / "landmarks.mrk.json").string() + "' --from '" + out.string() + "' --to '" +
+                              out.string() + "' --out '" + (dir / "m.mrk.json").string() + "'",
+                          &log),
+            0);
+  EXPECT_NE(log.find("not usable"), std::string::npos) << log;
+}
+
 }  // namespace
 }  // namespace breastfit

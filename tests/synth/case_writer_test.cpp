@@ -98,8 +98,21 @@ TEST(CaseWriter, IsByteIdenticalForTheSameSeedAndNeverOverwritesWithoutForce) {
   const SynthCase other = toy_case(6, "mm");
   EXPECT_THROW(write_case(a, other, false), IoError);
   EXPECT_EQ(slurp(a / "truth/meta.json"), slurp(b / "truth/meta.json"));  // untouched
+  std::ofstream(a / "notes.txt") << "mine";
   EXPECT_NO_THROW(write_case(a, other, true));
   EXPECT_NE(slurp(a / "truth/meta.json"), slurp(b / "truth/meta.json"));
+  EXPECT_EQ(slurp(a / "notes.txt"), "mine");  // not a file of the case: untouched
+  for (const auto& e : fs::directory_iterator(a.parent_path()))  // the staging directory is gone
+    EXPECT_EQ(e.path().filename().string().find(".breastfit-tmp-"), std::string::npos) << e.path();
+}
+
+TEST(CaseWriter, NamesEveryFileItWrites) {
+  const fs::path dir = test::temp_dir() / "case";
+  write_case(dir, toy_case(5, "mm"), false);
+  size_t n = 0;
+  for (const auto& e : fs::recursive_directory_iterator(dir)) n += e.is_regular_file();
+  EXPECT_EQ(n, case_file_names().size());
+  for (const auto& name : case_file_names()) EXPECT_TRUE(fs::is_regular_file(dir / name)) << name;
 }
 
 }  // namespace

@@ -73,6 +73,7 @@ TEST(FitDirectory, AppliesTheSurfaceDetailOfParamsJson) {
   fitted.V = fit::apply_surface_detail(posed, m.rest.F, offsets);
   fitted.F = m.rest.F;
   io::write_mesh(dir / "fitted.ply", fitted);
+  std::ofstream(dir / "report.json") << R"({"status": "ok", "units": "mm"})";
 
   const FitDirectory read = read_fit_directory(dir, &m);
   EXPECT_LT((read.fitted_mm.V - fitted.V).cwiseAbs().maxCoeff(), 1e-9);
@@ -84,6 +85,27 @@ TEST(FitDirectory, AppliesTheSurfaceDetailOfParamsJson) {
   doc["surface_detail"] = {{"offsets_mm", "none"}};
   std::ofstream(dir / "params.json") << doc.dump();
   EXPECT_THROW(read_fit_directory(dir, &m), IoError);
+}
+
+TEST(FitDirectory, RefusesAnIncompleteSetAndANotUsableFit) {
+  const model::RiggedModel m = test::make_toy_model();
+  const fs::path dir = test::temp_dir() / "fit";
+  fs::create_directories(dir);
+  model::write_params_json(dir / "params.json", m, model::PoseParams::identity(m));
+  const auto expect_refused = [&](const std::string& why) {
+    try {
+      read_fit_directory(dir, &m);
+      ADD_FAILURE() << "accepted, expected: " << why;
+    } catch (const IoError& e) {
+      EXPECT_NE(std::string(e.what()).find(why), std::string::npos) << e.what();
+    }
+  };
+  // report.json is moved in last: without it the set is incomplete (an interrupted run).
+  expect_refused("incomplete output set: no report.json");
+  std::ofstream(dir / "report.json") << R"({"status": "not_usable", "units": "mm"})";
+  expect_refused("not usable");
+  std::ofstream(dir / "report.json") << R"({"status": "ok", "units": "mm"})";
+  EXPECT_NO_THROW(read_fit_directory(dir, &m));
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include "breastfit/core/errors.h"
 #include "breastfit/io/io.h"
 #include "breastfit/io/markups.h"
+#include "breastfit/io/output_set.h"
 #include "breastfit/model/params_json.h"
 #include "breastfit/pipeline/register_report_json.h"
 #include "breastfit/pipeline/report_html.h"
@@ -53,22 +54,20 @@ void check_output_dir(const fs::path& dir, bool force, const std::vector<fs::pat
 void write_register_outputs(const fs::path& dir, const RegisterResult& r, const model::RiggedModel& model, bool force,
                             const std::vector<fs::path>& protected_paths, const RegisterOutputOptions& options) {
   check_output_dir(dir, force, protected_paths);
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec) throw IoError(dir.string(), "cannot create directory: " + ec.message());
+  io::OutputSet set(dir, register_output_names(), "report.json");
 
   const double from_mm = 1.0 / r.scan.to_mm;
   TriangleMesh fitted = r.fitted_mm;
   fitted.V *= from_mm;
-  io::write_mesh(dir / "fitted.ply", fitted);
+  io::write_mesh(set.path("fitted.ply"), fitted);
 
   io::MarkupsWriteOptions mo;
   mo.units = r.scan.units == mesh::Units::Metres ? "m" : "mm";
-  io::write_markups(dir / "landmarks.mrk.json", r.model_landmarks_mm, mo);
-  io::write_markups(dir / "drawings.mrk.json", r.drawings_mm, mo);
-  transfer::write_drawings_ply(dir / "drawings.ply", r.drawings_on_scan, from_mm);
-  transfer::write_drawings_obj(dir / "drawings.obj", r.drawings_on_scan, from_mm);
-  transfer::write_scan_painted(dir / "scan_painted.ply", r.scan.mesh_mm, r.drawings_on_scan, from_mm);
+  io::write_markups(set.path("landmarks.mrk.json"), r.model_landmarks_mm, mo);
+  io::write_markups(set.path("drawings.mrk.json"), r.drawings_mm, mo);
+  transfer::write_drawings_ply(set.path("drawings.ply"), r.drawings_on_scan, from_mm);
+  transfer::write_drawings_obj(set.path("drawings.obj"), r.drawings_on_scan, from_mm);
+  transfer::write_scan_painted(set.path("scan_painted.ply"), r.scan.mesh_mm, r.drawings_on_scan, from_mm);
 
   nlohmann::json params = model::params_to_json(model, r.fit.params);
   params["units_note"] = "translations in mm in the scan frame (converted from the file's units)";
@@ -77,14 +76,18 @@ void write_register_outputs(const fs::path& dir, const RegisterResult& r, const 
         {"note", "fitted.ply = the posed template + offsets_mm[i] * unit vertex normal i of the posed template"},
         {"offsets_mm", std::vector<double>(r.fit.detail_offsets.data(),
                                            r.fit.detail_offsets.data() + r.fit.detail_offsets.size())}};
-  write_json(dir / "params.json", params);
-  write_json(dir / "report.json", report_json(r));
-  if (options.report_html) {
-    write_report_html(dir / "report.html", r, model.name, options.figures);
-  } else {
-    fs::remove(dir / "report.html", ec);
-    if (ec) throw IoError((dir / "report.html").string(), "cannot remove the previous report: " + ec.message());
-  }
+  write_json(set.path("params.json"), params);
+  write_json(set.path("report.json"), report_json(r));
+  if (options.report_html) write_report_html(set.path("report.html"), r, model.name, options.figures);
+  set.commit();  // without report.html, the previous run's report.html goes
+}
+
+void write_register_failure(const fs::path& dir, const RegisterResult& r, bool force,
+                            const std::vector<fs::path>& protected_paths) {
+  check_output_dir(dir, force, protected_paths);
+  io::OutputSet set(dir, register_output_names(), "report.json");
+  write_json(set.path("report.json"), report_json(r));
+  set.commit();
 }
 
 }  // namespace breastfit::pipeline

@@ -11,7 +11,7 @@
 
 namespace breastfit::pipeline {
 
-/// The names of the files write_register_outputs writes.
+/// The names of the files write_register_outputs writes (report.json, the completion marker, among them).
 std::vector<std::string> register_output_names();
 
 /// Optional parts of the outputs.
@@ -20,8 +20,10 @@ struct RegisterOutputOptions {
   ReportFigureOptions figures;   ///< the report's images
 };
 
-/// Creates `dir` if needed and writes the outputs. Without report.html (options), an existing
-/// report.html in `dir` is removed (it would describe another run; `force` is needed for that).
+/// Creates `dir` if needed and writes the outputs as one set (io/output_set.h): all files are
+/// written next to `dir` first and moved in together, report.json last; an output of the
+/// previous run that this run does not write (report.html without options.report_html) is
+/// removed. Other files in `dir` are never touched.
 /// \param force      replace existing output files (otherwise an existing one is an error)
 /// \param protected_paths  files that must never be overwritten (the inputs), even with force
 /// \throws IoError when a file exists without `force`, would overwrite an input, or cannot be written
@@ -29,6 +31,12 @@ void write_register_outputs(const std::filesystem::path& dir, const RegisterResu
                             const model::RiggedModel& model, bool force,
                             const std::vector<std::filesystem::path>& protected_paths,
                             const RegisterOutputOptions& options = {});
+
+/// The outputs of a registration that is not usable: `dir` ends up with report.json (status
+/// "not_usable") as its only output — the previous run's fitted files are removed, so nothing in
+/// `dir` can be mistaken for a result. Same arguments and errors as write_register_outputs.
+void write_register_failure(const std::filesystem::path& dir, const RegisterResult& result, bool force,
+                            const std::vector<std::filesystem::path>& protected_paths);
 
 /// Checks the output directory before any work: same rules as write_register_outputs.
 void check_output_dir(const std::filesystem::path& dir, bool force,

@@ -7,6 +7,7 @@
 #include "breastfit/core/errors.h"
 #include "breastfit/io/io.h"
 #include "breastfit/io/markups.h"
+#include "breastfit/io/output_set.h"
 
 namespace breastfit::synth {
 namespace {
@@ -73,30 +74,34 @@ std::string format_curves_json(const SynthCase& c) {
   return s + "\n}\n";
 }
 
+std::vector<std::string> case_file_names() {
+  return {"scan.ply",          "landmarks.mrk.json",          "truth/surface.ply", "truth/landmarks.json",
+          "truth/curves.json", "truth/landmarks.mrk.json", "truth/meta.json"};
+}
+
 void write_case(const std::filesystem::path& dir, const SynthCase& c, bool force) {
   namespace fs = std::filesystem;
   std::error_code ec;
   if (!force && (fs::exists(dir / "scan.ply", ec) || fs::exists(dir / "truth", ec)))
     throw IoError(dir.string(), "a case already exists here (use --force to overwrite it)");
-  if (fs::exists(dir, ec) && !fs::is_directory(dir, ec)) throw IoError(dir.string(), "exists and is not a directory");
-  fs::create_directories(dir / "truth", ec);
-  if (ec) throw IoError(dir.string(), "cannot create the case directory: " + ec.message());
+  io::OutputSet set(dir, case_file_names(), "truth/meta.json");
 
   io::MeshWriteOptions mo;
   mo.binary = true;
   TriangleMesh scan;
   scan.V = c.scan.V;
   scan.F = c.scan.F;
-  io::write_mesh(dir / "scan.ply", scan, mo);
-  write_text(dir / "landmarks.mrk.json", markups_text(c.input_landmarks, c.units));
+  io::write_mesh(set.path("scan.ply"), scan, mo);
+  write_text(set.path("landmarks.mrk.json"), markups_text(c.input_landmarks, c.units));
   TriangleMesh truth;
   truth.V = c.truth_surface.V;
   truth.F = c.truth_surface.F;
-  io::write_mesh(dir / "truth" / "surface.ply", truth, mo);
-  write_text(dir / "truth" / "landmarks.json", format_landmarks_json(c));
-  write_text(dir / "truth" / "curves.json", format_curves_json(c));
-  write_text(dir / "truth" / "landmarks.mrk.json", markups_text(c.truth_landmarks, c.units));
-  write_text(dir / "truth" / "meta.json", c.meta_json);
+  io::write_mesh(set.path("truth/surface.ply"), truth, mo);
+  write_text(set.path("truth/landmarks.json"), format_landmarks_json(c));
+  write_text(set.path("truth/curves.json"), format_curves_json(c));
+  write_text(set.path("truth/landmarks.mrk.json"), markups_text(c.truth_landmarks, c.units));
+  write_text(set.path("truth/meta.json"), c.meta_json);
+  set.commit();
 }
 
 }  // namespace breastfit::synth

@@ -8,12 +8,20 @@
 ///   DIR/truth/landmarks.mrk.json the exact landmarks as markups
 ///   DIR/truth/meta.json          units, transform, generation parameters, statistics
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include "breastfit/synth/synth_case.h"
 
 namespace breastfit::synth {
 
-/// Writes `c` into `dir` (created with its parents when missing).
+/// The files of a case, relative to its directory; truth/meta.json, written last, marks a
+/// complete case.
+std::vector<std::string> case_file_names();
+
+/// Writes `c` into `dir` (created with its parents when missing) as one set (io/output_set.h):
+/// the files are written next to `dir` and moved in together, truth/meta.json last, so an
+/// interrupted run never leaves a mix of two cases. Other files in `dir` are not touched.
 /// \param[in] force  overwrite an existing case; without it a directory that already holds a
 ///                   scan.ply or truth/ is refused
 /// \throws IoError(dir, problem) when the case exists (without force) or a file cannot be written

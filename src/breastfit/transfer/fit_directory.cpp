@@ -54,13 +54,16 @@ FitDirectory read_fit_directory(const fs::path& dir, const model::RiggedModel* m
   FitDirectory out;
   out.dir = dir;
   const fs::path report = dir / "report.json";
-  if (fs::exists(report, ec)) {
-    const nlohmann::json j = read_json_file(report);
-    if (j.contains("units")) {
-      if (!j["units"].is_string() || (j["units"] != "mm" && j["units"] != "m"))
-        throw IoError(report.string(), "\"units\" must be \"mm\" or \"m\"");
-      out.units = j["units"].get<std::string>();
-    }
+  if (!fs::exists(report, ec))
+    throw IoError(dir.string(), "incomplete output set: no report.json (the run that wrote it was interrupted, or "
+                                "this is not the --out of `breastfit register`)");
+  const nlohmann::json j = read_json_file(report);
+  if (j.is_object() && j.value("status", "") == "not_usable")
+    throw IoError(report.string(), "the registration was not usable (status \"not_usable\"): there is no fit to read");
+  if (j.contains("units")) {
+    if (!j["units"].is_string() || (j["units"] != "mm" && j["units"] != "m"))
+      throw IoError(report.string(), "\"units\" must be \"mm\" or \"m\"");
+    out.units = j["units"].get<std::string>();
   }
   out.to_mm = out.units == "m" ? 1000.0 : 1.0;
 

@@ -1,0 +1,113 @@
+#include "breastfit/io/output_set.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+#include "support/test_paths.h"
+
+namespace breastfit::io {
+namespace {
+
+namespace fs = std::filesystem;
+
+void write(const fs::path& p, const std::string& text) { std::ofstream(p, std::ios::binary) << text; }
+
+std::string read(const fs::path& p) {
+  std::ifstream f(p, std::ios::binary);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  return ss.str();
+}
+
+// Names of the entries of `parent` that are staging directories.
+int staging_dirs_in(const fs::path& parent) {
+  int n = 0;
+  for (const auto& e : fs::directory_iterator(parent))
+    if (e.path().filename().string().find(".breastfit-tmp-") != std::string::npos) ++n;
+  return n;
+}
+
+const std::vector<std::string> kNames{"a.txt", "sub/b.txt", "c.txt", "report.json"};
+
+TEST(OutputSet, TheCompleteSetAppearsOnlyOnCommit) {
+  const fs::path dir = test::temp_dir() / "out";
+  {
+    OutputSet set(dir, kNames, "report.json");
+    EXPECT_EQ(set.staging_dir().parent_path(), dir.parent_path());
+    write(set.path("a.txt"), "A");
+    write(set.path("sub/b.txt"), "B");
+    write(set.path("report.json"), "{}");
+    EXPECT_FALSE(fs::exists(dir / "a.txt"));
+    set.commit();
+  }
+  EXPECT_EQ(read(dir / "a.txt"), "A");
+  EXPECT_EQ(read(dir / "sub" / "b.txt"), "B");
+  EXPECT_EQ(read(dir / "report.json"), "{}");
+  EXPECT_FALSE(fs::exists(dir / "c.txt"));
+  EXPECT_EQ(staging_dirs_in(dir.parent_path()), 0);
+}
+
+TEST(OutputSet, AFailureBeforeCommitLeavesTheDirectoryAsItWas) {
+  const fs::path dir = test::temp_dir() / "out";
+  fs::create_directories(dir);
+  write(dir / "a.txt", "old");
+  write(dir / "report.json", "old");
+  try {
+    OutputSet set(dir, kNames, "report.json");
+    write(set.path("a.txt"), "new");
+    throw std::runtime_error("the run fails");
+  } catch (const std::runtime_error&) {
+  }
+  EXPECT_EQ(read(dir / "a.txt"), "old");
+  EXPECT_EQ(read(dir / "report.json"), "old");
+  EXPECT_EQ(staging_dirs_in(dir.parent_path()), 0);
+}
+
+TEST(OutputSet, StaleFilesOfThePreviousSetGoForeignFilesStay) {
+  const fs::path dir = test::temp_dir() / "out";
+  fs::create_directories(dir / "sub");
+  for (const auto& n : kNames) write(dir / n, "old");
+  write(dir / "notes.txt", "mine");
+  write(dir / "sub" / "mine.txt", "mine");
+  OutputSet set(dir, kNames, "report.json");
+  write(set.path("report.json"), "failed");  // a failing run: only its report
+  set.commit();
+  EXPECT_EQ(read(dir / "report.json"), "failed");
+  for (const char* n : {"a.txt", "sub/b.txt", "c.txt"}) EXPECT_FALSE(fs::exists(dir / n)) << n;
+  EXPECT_EQ(read(dir / "notes.txt"), "mine");
+  EXPECT_EQ(read(dir / "sub" / "mine.txt"), "mine");
+}
+
+TEST(OutputSet, RemovesTheStagingDirectoriesOfKilledRuns) {
+  const fs::path parent = test::temp_dir();
+  const fs::path dir = parent / "out";
+  fs::create_directories(parent / ".out.breastfit-tmp-99999-3");
+  write(parent / ".out.breastfit-tmp-99999-3" / "a.txt", "partial");
+  fs::create_directories(parent / ".other.breastfit-tmp-1-0");  // another directory's: kept
+  write(parent / "out.txt", "x");
+  {
+    OutputSet set(dir / "", kNames, "report.json");  // a trailing separator names the same directory
+    EXPECT_FALSE(fs::exists(parent / ".out.breastfit-tmp-99999-3"));
+    EXPECT_EQ(staging_dirs_in(parent), 2);  // ours and the other directory's
+  }
+  EXPECT_TRUE(fs::exists(parent / ".other.breastfit-tmp-1-0"));
+  EXPECT_TRUE(fs::exists(parent / "out.txt"));
+  EXPECT_EQ(staging_prefix(dir), ".out.breastfit-tmp-");
+}
+
+TEST(OutputSet, NeedsTheMarkerAndKnownNames) {
+  const fs::path dir = test::temp_dir() / "out";
+  EXPECT_THROW(OutputSet(dir, kNames, "missing.json"), std::invalid_argument);
+  OutputSet set(dir, kNames, "report.json");
+  EXPECT_THROW(set.path("other.txt"), std::invalid_argument);
+  write(set.path("a.txt"), "A");
+  EXPECT_THROW(set.commit(), std::logic_error);  // no report.json: never an unmarked set
+  EXPECT_FALSE(fs::exists(dir / "a.txt"));
+}
+
+}  // namespace
+}  // namespace breastfit::io
