@@ -22,6 +22,7 @@
 #include "breastfit/mesh/mesh_stats.h"
 #include "breastfit/mesh/units.h"
 #include "commands.h"
+#include "file_warnings.h"
 
 namespace breastfit::cli {
 namespace {
@@ -129,7 +130,7 @@ PointsReport read_points_file(const InspectArgs& a, FileKind kind, std::optional
   PointsReport r;
   if (kind == FileKind::Markups) {
     r.kind = "markups";
-    r.content = io::read_markups(a.file);  // LPS mm
+    r.content = read_markups_warning(a.file).markups;  // LPS mm
     r.shown_units = "mm";
     try {
       r.declared_units = io::read_markups_file(a.file, {.convert_to_mm = false}).units;

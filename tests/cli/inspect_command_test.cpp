@@ -153,6 +153,19 @@ TEST(InspectCommand, MarkupsWithPointsAndCurves) {
   EXPECT_EQ(k["curves"].size(), 1u);
 }
 
+TEST(InspectCommand, SkippedMarkupTypesAreWarnedAbout) {
+  const fs::path p = test::temp_dir() / "mixed.mrk.json";
+  std::ofstream(p) << R"({"markups": [
+    {"type": "Fiducial", "name": "F", "controlPoints": [{"label": "xiphoid", "position": [1, 2, 3]}]},
+    {"type": "Plane", "name": "midline", "controlPoints": [{"position": [0, 0, 0]}]}]})";
+  std::string out;
+  EXPECT_EQ(test::run_cli("inspect '" + p.string() + "'", &out), 0) << out;
+  EXPECT_NE(out.find("breastfit: warning: " + p.string() + ": markup 'midline' of type Plane skipped"),
+            std::string::npos)
+      << out;
+  EXPECT_NE(out.find("points: 1"), std::string::npos) << out;
+}
+
 TEST(InspectCommand, CsvLandmarksWithUnits) {
   const fs::path p = test::temp_dir() / "lm.csv";
   std::ofstream(p) << "name,x,y,z\nxiphoid,0.1,0.2,0.3\nnipple_R,0.4,0.5,0.6\n";

@@ -109,10 +109,11 @@ MarkupsFile parse_markups(std::string_view text, const std::string& source,
       what += '\'';
     }
     const bool is_points = type == "Fiducial";
-    const bool is_curve = type == "Curve" || type == "ClosedCurve";
+    const bool is_curve = type == "Curve" || type == "ClosedCurve" || type == "Line";
     if (!is_points && !is_curve) {
       if (type.empty()) throw IoError(source, what + " has no \"type\"");
-      continue;  // Line, Angle, Plane, ROI, ...: not used by breastfit
+      out.warnings.push_back(what + " of type " + type + " skipped (breastfit reads Fiducial, Curve, ClosedCurve and Line)");
+      continue;
     }
     const bool ras = is_ras(mk, source, what);
     const std::string units = units_of(mk, source, what);
