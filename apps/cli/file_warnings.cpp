@@ -14,4 +14,10 @@ io::MarkupsFile read_markups_warning(const std::string& path, const io::MarkupsR
   return file;
 }
 
+LandmarkSet read_landmarks_warning(const std::string& path, const io::LandmarkReadOptions& options) {
+  LandmarkSet landmarks = io::read_landmarks(path, options);
+  print_file_warnings(path, landmarks.warnings);
+  return landmarks;
+}
+
 }  // namespace breastfit::cli

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "breastfit/io/landmarks_io.h"
 #include "breastfit/io/markups.h"
 
 namespace breastfit::cli {
@@ -13,5 +14,8 @@ void print_file_warnings(const std::string& file, const std::vector<std::string>
 
 /// io::read_markups_file with its warnings printed. \throws IoError as io::read_markups_file.
 io::MarkupsFile read_markups_warning(const std::string& path, const io::MarkupsReadOptions& options = {});
+
+/// io::read_landmarks with its warnings printed. \throws IoError as io::read_landmarks.
+LandmarkSet read_landmarks_warning(const std::string& path, const io::LandmarkReadOptions& options = {});
 
 }  // namespace breastfit::cli

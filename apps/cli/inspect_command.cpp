@@ -140,7 +140,7 @@ PointsReport read_points_file(const InspectArgs& a, FileKind kind, std::optional
     return r;
   }
   r.kind = "landmarks";
-  LandmarkSet lm = io::read_landmarks(a.file, {.require_known_names = false});
+  LandmarkSet lm = read_landmarks_warning(a.file, {.require_known_names = false});
   r.declared_units = lm.declared_units;
   if (lm.declared_units || units) {
     lm = io::landmarks_to_mm(lm, units.value_or(mesh::Units::Millimetres));

@@ -69,7 +69,7 @@ void add_landmarks(render::Scene& scene, mesh::NamedPositions& named, const std:
                    std::optional<mesh::Units> scene_units, const OverlaySizes& sizes) {
   io::LandmarkReadOptions opt;
   opt.require_known_names = false;
-  LandmarkSet lm = io::read_landmarks(path, opt);
+  LandmarkSet lm = read_landmarks_warning(path, opt);
   // Bring declared units to the scene's units (undeclared: assume the scene's units).
   double factor = 1.0;
   if (lm.declared_units && scene_units) {

@@ -153,14 +153,18 @@ TEST(InspectCommand, MarkupsWithPointsAndCurves) {
   EXPECT_EQ(k["curves"].size(), 1u);
 }
 
-TEST(InspectCommand, SkippedMarkupTypesAreWarnedAbout) {
+TEST(InspectCommand, SkippedMarkupTypesAndUnplacedPointsAreWarnedAbout) {
   const fs::path p = test::temp_dir() / "mixed.mrk.json";
   std::ofstream(p) << R"({"markups": [
-    {"type": "Fiducial", "name": "F", "controlPoints": [{"label": "xiphoid", "position": [1, 2, 3]}]},
+    {"type": "Fiducial", "name": "F", "controlPoints": [{"label": "xiphoid", "position": [1, 2, 3]},
+       {"label": "nipple_R", "position": "", "positionStatus": "missing"}]},
     {"type": "Plane", "name": "midline", "controlPoints": [{"position": [0, 0, 0]}]}]})";
   std::string out;
   EXPECT_EQ(test::run_cli("inspect '" + p.string() + "'", &out), 0) << out;
   EXPECT_NE(out.find("breastfit: warning: " + p.string() + ": markup 'midline' of type Plane skipped"),
+            std::string::npos)
+      << out;
+  EXPECT_NE(out.find("breastfit: warning: " + p.string() + ": markup 'F' control point 'nipple_R' skipped"),
             std::string::npos)
       << out;
   EXPECT_NE(out.find("points: 1"), std::string::npos) << out;

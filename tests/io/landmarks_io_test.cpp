@@ -70,6 +70,17 @@ TEST(LandmarksIo, MarkupsWithoutUnitsDeclareMillimetres) {
   EXPECT_EQ(*lm.find("sternal_notch"), Vec3(1, 2, 3));
 }
 
+TEST(LandmarksIo, UnplacedMarkupsPointIsSkippedWithAWarning) {
+  const fs::path p = write_text("unplaced.mrk.json", R"({"markups": [{"type": "Fiducial", "name": "F",
+    "controlPoints": [{"label": "nipple_R", "position": "", "positionStatus": "missing"},
+                      {"label": "xiphoid", "position": [1, 2, 3]}]}]})");
+  const LandmarkSet lm = read_landmarks(p);
+  EXPECT_EQ(lm.names(), (std::vector<std::string>{"xiphoid"}));
+  ASSERT_EQ(lm.warnings.size(), 1u);
+  EXPECT_NE(lm.warnings[0].find("'nipple_R' skipped"), std::string::npos) << lm.warnings[0];
+  EXPECT_TRUE(landmarks_to_mm(lm, mesh::Units::Millimetres).warnings == lm.warnings);
+}
+
 TEST(LandmarksIo, PlainJsonInFileOrder) {
   const fs::path p = write_text("lm.json", R"({"xiphoid": [1.5, 2, 3e2], "acromion_R": [-4, 5, -6]})");
   const LandmarkSet lm = read_landmarks(p);

@@ -186,6 +186,27 @@ TEST(Markups, SeveralMarkupsLinesAndSkippedTypes) {
             std::string::npos);
 }
 
+TEST(Markups, UnplacedControlPointsAreSkippedWithAWarning) {
+  const fs::path p = test::temp_dir() / "unplaced.mrk.json";
+  write_text(p, R"({"markups": [{"type": "Fiducial", "name": "F", "controlPoints": [
+       {"label": "nipple_R", "position": "", "positionStatus": "missing"},
+       {"label": "xiphoid", "position": [1, 2, 3], "positionStatus": "defined"},
+       {"label": "later", "positionStatus": "undefined"},
+       {"position": [0, 0, 0], "positionStatus": "preview"}]}]})");
+  const MarkupsFile f = read_markups_file(p, {});
+  ASSERT_EQ(f.markups.points.size(), 1u);
+  EXPECT_EQ(f.markups.points[0].name, "xiphoid");
+  ASSERT_EQ(f.warnings.size(), 3u);
+  EXPECT_EQ(f.warnings[0],
+            "markup 'F' control point 'nipple_R' skipped (positionStatus \"missing\": not placed in Slicer)");
+  EXPECT_NE(f.warnings[1].find("'later' skipped (positionStatus \"undefined\""), std::string::npos) << f.warnings[1];
+  EXPECT_NE(f.warnings[2].find("control point #4 skipped (positionStatus \"preview\""), std::string::npos)
+      << f.warnings[2];
+  // Without a status saying so, an empty position is still an error.
+  write_text(p, R"({"markups": [{"type": "Fiducial", "controlPoints": [{"label": "a", "position": ""}]}]})");
+  EXPECT_NE(io_error_of([&] { read_markups(p); }).find("not an array of 3 numbers"), std::string::npos);
+}
+
 TEST(Markups, ReadsBenchmarkStyleFile) {
   const fs::path p = test::temp_dir() / "bench_like.mrk.json";
   write_text(p, R"({

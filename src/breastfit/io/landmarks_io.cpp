@@ -179,6 +179,7 @@ LandmarkSet read_landmarks(const std::filesystem::path& path, const LandmarkRead
       const MarkupsFile mf = parse_markups(text, source, {.convert_to_mm = false});
       out.points = mf.markups.points;
       out.declared_units = mf.units;
+      out.warnings = mf.warnings;
     } else {
       std::vector<std::string> unique_keys;
       std::set<std::string> seen;

@@ -3,7 +3,8 @@
 ///
 /// Formats, chosen by extension (case-insensitive):
 ///  - `.mrk.json` — 3D Slicer markups (see markups.h): the control points of every "Fiducial"
-///    point list, named by their labels (curves are ignored); RAS is converted to LPS;
+///    point list, named by their labels (curves are ignored); RAS is converted to LPS; what the
+///    markups reader skipped (unplaced points, other markup types) is in LandmarkSet::warnings;
 ///  - `.json` — `{"name": [x, y, z], ...}` (a `.json` holding a "markups" array is read as
 ///    markups);
 ///  - `.csv` — one `name,x,y,z` per line; an optional header line (e.g. `name,x,y,z`), blank

@@ -8,8 +8,10 @@
 /// are skipped with a warning naming them (MarkupsFile::warnings). `coordinateSystem` "LPS" (the
 /// default when absent) or "RAS" (converted to LPS by negating x and y); `coordinateUnits` "mm"
 /// (the default when absent) or "m", as a string or as a coded array such as
-/// ["m", "UCUM", "meter"]. Control points whose `positionStatus` is "undefined" (placeholders
-/// not yet placed in Slicer) are skipped; any other control point must have a finite 3-vector
+/// ["m", "UCUM", "meter"]. Control points whose `positionStatus` is "missing", "undefined" or
+/// "preview" (skipped, never placed or still being placed in Slicer; their `position` may be ""
+/// or absent) are left out with a warning naming them (the rest of the file is kept); any other
+/// control point must have a finite 3-vector
 /// `position`. Bare NaN / Infinity tokens (as Python's json module writes them) are reported as
 /// non-finite coordinates of the point they belong to, not as malformed JSON.
 ///
@@ -37,7 +39,7 @@ struct MarkupsReadOptions {
 struct MarkupsFile {
   Markups markups;          ///< positions in LPS, in `units`
   std::string units = "mm"; ///< "mm" or "m": units of the positions in `markups`
-  std::vector<std::string> warnings;  ///< what was skipped (markup types)
+  std::vector<std::string> warnings;  ///< what was skipped (markup types, unplaced points)
 };
 
 /// Reads a markups file; positions in LPS millimetres. Drops the warnings (read_markups_file
