@@ -56,8 +56,13 @@ FileKind kind_of(const std::filesystem::path& path) {
     if (doc.is_object() && doc.contains("markups")) return FileKind::Markups;
     return FileKind::Landmarks;
   }
-  if (ends_with(name, ".csv")) return FileKind::Landmarks;
-  return FileKind::Mesh;
+  if (ends_with(name, ".csv") || ends_with(name, ".fcsv")) return FileKind::Landmarks;
+  if (io::has_mesh_extension(path)) return FileKind::Mesh;
+  const std::string ext = path.extension().string();
+  throw IoError(path.string(), (ext.empty() ? std::string("no file extension") : "unknown extension '" + ext + "'") +
+                                   " (supported: meshes " +
+                                   std::string(io::kMeshExtensions) + "; landmarks and markups " +
+                                   std::string(io::kLandmarkExtensions) + ")");
 }
 
 std::string num(double x) {
@@ -210,7 +215,7 @@ void inspect_points(const InspectArgs& a, FileKind kind, std::optional<mesh::Uni
 void register_inspect(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<InspectArgs>();
   auto* sub = app.add_subcommand(
-      "inspect", "Describe a mesh / point cloud (.ply .obj .stl) or a landmark / markups file (.mrk.json .json .csv)");
+      "inspect", "Describe a mesh / point cloud (.ply .obj .stl) or a landmark / markups file (.mrk.json .json .csv .fcsv)");
   sub->add_option("file", args->file, "file to inspect")->required();
   sub->add_flag("--json", args->json, "print machine-readable JSON instead of text");
   sub->add_option("--units", args->units, "units of the file: auto (guess from the extent), mm or m")

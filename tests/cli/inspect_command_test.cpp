@@ -202,6 +202,14 @@ TEST(InspectCommand, BadFilesFailWithOneLineNamingTheFile) {
   }
   std::string out;
   EXPECT_EQ(test::run_cli("inspect --units cm '" + junk.string() + "'", &out), 2) << out;
+  // An unknown extension lists what inspect reads: meshes and landmark files.
+  const fs::path txt = dir / "points.txt";
+  std::ofstream(txt) << "xiphoid 1 2 3\n";
+  EXPECT_EQ(test::run_cli("inspect '" + txt.string() + "'", &out), 4) << out;
+  EXPECT_NE(out.find("unknown extension '.txt' (supported: meshes .ply, .obj, .stl; landmarks and markups "
+                     ".mrk.json, .json, .csv, .fcsv)"),
+            std::string::npos)
+      << out;
 }
 
 }  // namespace
