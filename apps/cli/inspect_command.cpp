@@ -22,6 +22,7 @@
 #include "breastfit/mesh/mesh_stats.h"
 #include "breastfit/mesh/units.h"
 #include "commands.h"
+#include "file_warnings.h"
 
 namespace breastfit::cli {
 namespace {
@@ -55,8 +56,13 @@ FileKind kind_of(const std::filesystem::path& path) {
     if (doc.is_object() && doc.contains("markups")) return FileKind::Markups;
     return FileKind::Landmarks;
   }
-  if (ends_with(name, ".csv")) return FileKind::Landmarks;
-  return FileKind::Mesh;
+  if (ends_with(name, ".csv") || ends_with(name, ".fcsv")) return FileKind::Landmarks;
+  if (io::has_mesh_extension(path)) return FileKind::Mesh;
+  const std::string ext = path.extension().string();
+  throw IoError(path.string(), (ext.empty() ? std::string("no file extension") : "unknown extension '" + ext + "'") +
+                                   " (supported: meshes " +
+                                   std::string(io::kMeshExtensions) + "; landmarks and markups " +
+                                   std::string(io::kLandmarkExtensions) + ")");
 }
 
 std::string num(double x) {
@@ -129,7 +135,7 @@ PointsReport read_points_file(const InspectArgs& a, FileKind kind, std::optional
   PointsReport r;
   if (kind == FileKind::Markups) {
     r.kind = "markups";
-    r.content = io::read_markups(a.file);  // LPS mm
+    r.content = read_markups_warning(a.file).markups;  // LPS mm
     r.shown_units = "mm";
     try {
       r.declared_units = io::read_markups_file(a.file, {.convert_to_mm = false}).units;
@@ -139,7 +145,7 @@ PointsReport read_points_file(const InspectArgs& a, FileKind kind, std::optional
     return r;
   }
   r.kind = "landmarks";
-  LandmarkSet lm = io::read_landmarks(a.file, {.require_known_names = false});
+  LandmarkSet lm = read_landmarks_warning(a.file, {.require_known_names = false});
   r.declared_units = lm.declared_units;
   if (lm.declared_units || units) {
     lm = io::landmarks_to_mm(lm, units.value_or(mesh::Units::Millimetres));
@@ -209,7 +215,7 @@ void inspect_points(const InspectArgs& a, FileKind kind, std::optional<mesh::Uni
 void register_inspect(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<InspectArgs>();
   auto* sub = app.add_subcommand(
-      "inspect", "Describe a mesh / point cloud (.ply .obj .stl) or a landmark / markups file (.mrk.json .json .csv)");
+      "inspect", "Describe a mesh / point cloud (.ply .obj .stl) or a landmark / markups file (.mrk.json .json .csv .fcsv)");
   sub->add_option("file", args->file, "file to inspect")->required();
   sub->add_flag("--json", args->json, "print machine-readable JSON instead of text");
   sub->add_option("--units", args->units, "units of the file: auto (guess from the extent), mm or m")

@@ -18,6 +18,7 @@
 #include "breastfit/transfer/surface_map_json.h"
 #include "command_support.h"
 #include "commands.h"
+#include "file_warnings.h"
 
 namespace breastfit::cli {
 namespace fs = std::filesystem;
@@ -60,7 +61,7 @@ void register_map(CLI::App& app, int& exit_code) {
     const model::RiggedModel model = load_template(args->template_path);
     const transfer::FitDirectory a = transfer::read_fit_directory(args->from, &model);
     const transfer::FitDirectory b = transfer::read_fit_directory(args->to, &model);
-    const Markups input = io::read_markups(args->input);  // LPS mm
+    const Markups input = read_markups_warning(args->input).markups;  // LPS mm
     if (input.points.empty() && input.curves.empty()) throw InvalidInput(args->input + ": no points or curves to map");
 
     std::optional<fit::ScanTarget> scan_b;

@@ -11,6 +11,7 @@
 #include "command_support.h"
 #include "commands.h"
 #include "exit_codes.h"
+#include "file_warnings.h"
 
 namespace breastfit::cli {
 
@@ -49,7 +50,7 @@ void register_register(CLI::App& app, int& exit_code) {
     req.scan_name = args->scan;
     req.units = parse_units_flag(args->units);
     req.landmarks_name = args->landmarks;
-    if (!args->landmarks.empty() && !args->no_landmarks) req.landmarks = io::read_landmarks(args->landmarks);
+    if (!args->landmarks.empty() && !args->no_landmarks) req.landmarks = read_landmarks_warning(args->landmarks);
     req.model = std::make_shared<const model::RiggedModel>(load_template(args->template_path));
     const model::RiggedModel& model = *req.model;
     req.options = load_fit_options(args->config, args->fit);

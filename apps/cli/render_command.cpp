@@ -21,6 +21,7 @@
 #include "breastfit/render/torso_overlays.h"
 #include "breastfit/template/default_template.h"
 #include "commands.h"
+#include "file_warnings.h"
 
 namespace breastfit::cli {
 
@@ -68,7 +69,7 @@ void add_landmarks(render::Scene& scene, mesh::NamedPositions& named, const std:
                    std::optional<mesh::Units> scene_units, const OverlaySizes& sizes) {
   io::LandmarkReadOptions opt;
   opt.require_known_names = false;
-  LandmarkSet lm = io::read_landmarks(path, opt);
+  LandmarkSet lm = read_landmarks_warning(path, opt);
   // Bring declared units to the scene's units (undeclared: assume the scene's units).
   double factor = 1.0;
   if (lm.declared_units && scene_units) {
@@ -84,7 +85,7 @@ void add_landmarks(render::Scene& scene, mesh::NamedPositions& named, const std:
 /// Adds the curves (and points) of a markups file; read_markups gives millimetres.
 void add_drawings(render::Scene& scene, const std::string& path, std::optional<mesh::Units> scene_units,
                   const OverlaySizes& sizes) {
-  const Markups m = io::read_markups(path);
+  const Markups m = read_markups_warning(path).markups;
   const double factor = scene_units ? 1.0 / mesh::to_mm_factor(*scene_units) : 1.0;
   for (const Curve& c : m.curves) add_curve(scene, c.name, c.closed, factor * c.points, sizes);
   for (const NamedPoint& p : m.points) {

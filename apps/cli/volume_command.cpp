@@ -16,6 +16,7 @@
 #include "breastfit/transfer/curve_region.h"
 #include "command_support.h"
 #include "commands.h"
+#include "file_warnings.h"
 
 namespace breastfit::cli {
 
@@ -59,7 +60,7 @@ void register_volume(CLI::App& app, int& exit_code) {
       throw InvalidInput(args->mesh + ": " + e.what());
     }
     mesh.V *= mesh::to_mm_factor(units);
-    const Markups markups = io::read_markups(args->curves);  // mm
+    const Markups markups = read_markups_warning(args->curves).markups;  // mm
 
     std::vector<const Curve*> chosen;
     if (args->names.empty()) {

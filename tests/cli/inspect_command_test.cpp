@@ -153,6 +153,23 @@ TEST(InspectCommand, MarkupsWithPointsAndCurves) {
   EXPECT_EQ(k["curves"].size(), 1u);
 }
 
+TEST(InspectCommand, SkippedMarkupTypesAndUnplacedPointsAreWarnedAbout) {
+  const fs::path p = test::temp_dir() / "mixed.mrk.json";
+  std::ofstream(p) << R"({"markups": [
+    {"type": "Fiducial", "name": "F", "controlPoints": [{"label": "xiphoid", "position": [1, 2, 3]},
+       {"label": "nipple_R", "position": "", "positionStatus": "missing"}]},
+    {"type": "Plane", "name": "midline", "controlPoints": [{"position": [0, 0, 0]}]}]})";
+  std::string out;
+  EXPECT_EQ(test::run_cli("inspect '" + p.string() + "'", &out), 0) << out;
+  EXPECT_NE(out.find("breastfit: warning: " + p.string() + ": markup 'midline' of type Plane skipped"),
+            std::string::npos)
+      << out;
+  EXPECT_NE(out.find("breastfit: warning: " + p.string() + ": markup 'F' control point 'nipple_R' skipped"),
+            std::string::npos)
+      << out;
+  EXPECT_NE(out.find("points: 1"), std::string::npos) << out;
+}
+
 TEST(InspectCommand, CsvLandmarksWithUnits) {
   const fs::path p = test::temp_dir() / "lm.csv";
   std::ofstream(p) << "name,x,y,z\nxiphoid,0.1,0.2,0.3\nnipple_R,0.4,0.5,0.6\n";
@@ -185,6 +202,14 @@ TEST(InspectCommand, BadFilesFailWithOneLineNamingTheFile) {
   }
   std::string out;
   EXPECT_EQ(test::run_cli("inspect --units cm '" + junk.string() + "'", &out), 2) << out;
+  // An unknown extension lists what inspect reads: meshes and landmark files.
+  const fs::path txt = dir / "points.txt";
+  std::ofstream(txt) << "xiphoid 1 2 3\n";
+  EXPECT_EQ(test::run_cli("inspect '" + txt.string() + "'", &out), 4) << out;
+  EXPECT_NE(out.find("unknown extension '.txt' (supported: meshes .ply, .obj, .stl; landmarks and markups "
+                     ".mrk.json, .json, .csv, .fcsv)"),
+            std::string::npos)
+      << out;
 }
 
 }  // namespace

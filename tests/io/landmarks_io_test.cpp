@@ -70,6 +70,42 @@ TEST(LandmarksIo, MarkupsWithoutUnitsDeclareMillimetres) {
   EXPECT_EQ(*lm.find("sternal_notch"), Vec3(1, 2, 3));
 }
 
+TEST(LandmarksIo, UnplacedMarkupsPointIsSkippedWithAWarning) {
+  const fs::path p = write_text("unplaced.mrk.json", R"({"markups": [{"type": "Fiducial", "name": "F",
+    "controlPoints": [{"label": "nipple_R", "position": "", "positionStatus": "missing"},
+                      {"label": "xiphoid", "position": [1, 2, 3]}]}]})");
+  const LandmarkSet lm = read_landmarks(p);
+  EXPECT_EQ(lm.names(), (std::vector<std::string>{"xiphoid"}));
+  ASSERT_EQ(lm.warnings.size(), 1u);
+  EXPECT_NE(lm.warnings[0].find("'nipple_R' skipped"), std::string::npos) << lm.warnings[0];
+  EXPECT_TRUE(landmarks_to_mm(lm, mesh::Units::Millimetres).warnings == lm.warnings);
+}
+
+TEST(LandmarksIo, SlicerFcsvInRasLpsAndCodedSystems) {
+  const std::string rows =
+      "vtkMRMLMarkupsFiducialNode_0,12.3,-4.5,6.7,0,0,0,1,1,1,0,nipple_R,,\n"
+      "vtkMRMLMarkupsFiducialNode_1,-1,2,3,0,0,0,1,1,1,0,xiphoid,a note,vtkMRMLModelNode4\n";
+  const std::string header =
+      "# Markups fiducial file version = 4.11\n"
+      "# columns = id,x,y,z,ow,ox,oy,oz,vis,sel,lock,label,desc,associatedNodeID\n";
+  for (const std::string cs : {"RAS", "0", ""}) {
+    SCOPED_TRACE("CoordinateSystem '" + cs + "'");
+    const std::string system = cs.empty() ? "" : "# CoordinateSystem = " + cs + "\n";
+    const LandmarkSet lm = read_landmarks(write_text("ras.fcsv", header + system + rows));
+    EXPECT_EQ(lm.names(), (std::vector<std::string>{"nipple_R", "xiphoid"}));
+    EXPECT_EQ(lm.declared_units, "mm");
+    EXPECT_EQ(*lm.find("nipple_R"), Vec3(-12.3, 4.5, 6.7));  // RAS -> LPS as for markups
+  }
+  for (const std::string cs : {"LPS", "1"}) {
+    const LandmarkSet lm = read_landmarks(write_text("lps.FCSV", header + "# CoordinateSystem = " + cs + "\n" + rows));
+    EXPECT_EQ(*lm.find("xiphoid"), Vec3(-1, 2, 3));
+  }
+  // Columns in another order are followed.
+  const LandmarkSet moved = read_landmarks(
+      write_text("cols.fcsv", "# CoordinateSystem = LPS\n# columns = label,z,y,x\nsternal_notch, 3, 2, 1\n"));
+  EXPECT_EQ(*moved.find("sternal_notch"), Vec3(1, 2, 3));
+}
+
 TEST(LandmarksIo, PlainJsonInFileOrder) {
   const fs::path p = write_text("lm.json", R"({"xiphoid": [1.5, 2, 3e2], "acromion_R": [-4, 5, -6]})");
   const LandmarkSet lm = read_landmarks(p);
@@ -157,7 +193,16 @@ TEST(LandmarksIo, MalformedInputsGiveOneLineErrors) {
   EXPECT_NE(read_error("g.csv", "name,x,y,z\nxiphoid,1,abc,3\n").find("line 2: 'abc' is not a number"),
             std::string::npos);
   EXPECT_NE(read_error("h.csv", "xiphoid,1,2,3\nnipple_L,x,2,3\n").find("line 2"), std::string::npos);
-  EXPECT_NE(read_error("x.txt", "xiphoid 1 2 3").find("unsupported landmark file extension '.txt'"),
+  EXPECT_NE(read_error("x.txt", "xiphoid 1 2 3")
+                .find("unsupported landmark file extension '.txt' (supported landmark files: .mrk.json, .json, "
+                      ".csv, .fcsv)"),
+            std::string::npos);
+  EXPECT_NE(read_error("c.fcsv", "# CoordinateSystem = XYZ\n").find("line 1: unsupported CoordinateSystem 'XYZ'"),
+            std::string::npos);
+  EXPECT_NE(read_error("n.fcsv", "vtkMRMLMarkupsFiducialNode_0,1,abc,3,0,0,0,1,1,1,0,xiphoid,,\n")
+                .find("line 1: expected a number in column 'y'"),
+            std::string::npos);
+  EXPECT_NE(read_error("l.fcsv", "# columns = id,x,y,z\nid0,1,2,3\n").find("line 2: the point has no label"),
             std::string::npos);
   EXPECT_NE(io_error_of([] { read_landmarks(test::temp_dir() / "nope.csv"); }).find("does not exist"),
             std::string::npos);

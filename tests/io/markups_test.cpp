@@ -146,33 +146,65 @@ TEST(Markups, ReadsRasAndUnitVariants) {
   EXPECT_EQ(read_markups(p).points[0].position, Vec3(1, 2, 3));
 }
 
-TEST(Markups, SeveralMarkupsOtherTypesAndUndefinedPoints) {
+TEST(Markups, SeveralMarkupsLinesAndSkippedTypes) {
   const fs::path p = test::temp_dir() / "multi.mrk.json";
   write_text(p, R"({"markups": [
-    {"type": "Fiducial", "name": "a", "controlPoints": [
-       {"label": "p1", "position": [1, 1, 1]},
-       {"label": "later", "positionStatus": "undefined"}]},
-    {"type": "Line", "name": "ruler", "controlPoints": [{"label": "x", "position": [0, 0, 0]}]},
+    {"type": "Fiducial", "name": "a", "controlPoints": [{"label": "p1", "position": [1, 1, 1]}]},
+    {"type": "Line", "name": "ruler", "controlPoints": [
+       {"label": "x", "position": [0, 0, 0]}, {"label": "y", "position": [3, 4, 0]}]},
+    {"type": "Plane", "name": "midline", "controlPoints": [{"position": [0, 0, 0]}]},
+    {"type": "ROI", "controlPoints": []},
+    {"type": "Angle", "name": "tilt", "controlPoints": []},
     {"type": "ClosedCurve", "name": "loop", "coordinateSystem": "RAS", "controlPoints": [
        {"position": [1, 0, 0]}, {"position": [0, 1, 0]}, {"position": [0, 0, 1]}]},
     {"type": "Fiducial", "name": "b", "coordinateUnits": "m", "controlPoints": [
        {"label": "p2", "position": [0.001, 0.002, 0.003]}]}]})");
-  const Markups m = read_markups(p);
+  const MarkupsFile f = read_markups_file(p, {});
+  const Markups& m = f.markups;
   ASSERT_EQ(m.points.size(), 2u);
   EXPECT_EQ(m.points[0].name, "p1");
   EXPECT_EQ(m.points[1].name, "p2");
   EXPECT_LT((m.points[1].position - Vec3(1, 2, 3)).norm(), 1e-12);
-  ASSERT_EQ(m.curves.size(), 1u);
-  EXPECT_TRUE(m.curves[0].closed);
-  EXPECT_EQ(m.curves[0].name, "loop");
-  EXPECT_EQ(m.curves[0].points.row(0), Eigen::RowVector3d(-1, 0, 0));
-  EXPECT_NEAR(m.curves[0].length(), 3 * std::sqrt(2.0), 1e-12);
+  ASSERT_EQ(m.curves.size(), 2u);
+  EXPECT_EQ(m.curves[0].name, "ruler");  // a Line is an open curve of its two points
+  EXPECT_FALSE(m.curves[0].closed);
+  EXPECT_EQ(m.curves[0].length(), 5.0);
+  EXPECT_TRUE(m.curves[1].closed);
+  EXPECT_EQ(m.curves[1].name, "loop");
+  EXPECT_EQ(m.curves[1].points.row(0), Eigen::RowVector3d(-1, 0, 0));
+  EXPECT_NEAR(m.curves[1].length(), 3 * std::sqrt(2.0), 1e-12);
   ASSERT_NE(m.find_curve("loop"), nullptr);
   EXPECT_EQ(m.find_point("p2")->name, "p2");
   EXPECT_EQ(m.find_point("ruler"), nullptr);
+  // The skipped markups are named, with their type.
+  ASSERT_EQ(f.warnings.size(), 3u);
+  EXPECT_EQ(f.warnings[0], "markup 'midline' of type Plane skipped (breastfit reads Fiducial, Curve, ClosedCurve and Line)");
+  EXPECT_NE(f.warnings[1].find("markup #4 of type ROI skipped"), std::string::npos) << f.warnings[1];
+  EXPECT_NE(f.warnings[2].find("markup 'tilt' of type Angle skipped"), std::string::npos) << f.warnings[2];
   // Mixed units cannot be kept raw.
   EXPECT_NE(io_error_of([&] { read_markups_file(p, {.convert_to_mm = false}); }).find("different coordinateUnits"),
             std::string::npos);
+}
+
+TEST(Markups, UnplacedControlPointsAreSkippedWithAWarning) {
+  const fs::path p = test::temp_dir() / "unplaced.mrk.json";
+  write_text(p, R"({"markups": [{"type": "Fiducial", "name": "F", "controlPoints": [
+       {"label": "nipple_R", "position": "", "positionStatus": "missing"},
+       {"label": "xiphoid", "position": [1, 2, 3], "positionStatus": "defined"},
+       {"label": "later", "positionStatus": "undefined"},
+       {"position": [0, 0, 0], "positionStatus": "preview"}]}]})");
+  const MarkupsFile f = read_markups_file(p, {});
+  ASSERT_EQ(f.markups.points.size(), 1u);
+  EXPECT_EQ(f.markups.points[0].name, "xiphoid");
+  ASSERT_EQ(f.warnings.size(), 3u);
+  EXPECT_EQ(f.warnings[0],
+            "markup 'F' control point 'nipple_R' skipped (positionStatus \"missing\": not placed in Slicer)");
+  EXPECT_NE(f.warnings[1].find("'later' skipped (positionStatus \"undefined\""), std::string::npos) << f.warnings[1];
+  EXPECT_NE(f.warnings[2].find("control point #4 skipped (positionStatus \"preview\""), std::string::npos)
+      << f.warnings[2];
+  // Without a status saying so, an empty position is still an error.
+  write_text(p, R"({"markups": [{"type": "Fiducial", "controlPoints": [{"label": "a", "position": ""}]}]})");
+  EXPECT_NE(io_error_of([&] { read_markups(p); }).find("not an array of 3 numbers"), std::string::npos);
 }
 
 TEST(Markups, ReadsBenchmarkStyleFile) {

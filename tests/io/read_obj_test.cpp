@@ -42,6 +42,41 @@ TEST(ReadObj, PolygonsAreFanTriangulatedAndWAndGroupsIgnored) {
   EXPECT_FALSE(m.has_normals());
 }
 
+/// The L-shaped hexagon (2,1) (1,1) (1,2) (0,2) (0,0) (2,0) of area 3, counter-clockwise seen
+/// from +z, tilted out of the xy plane; its first corner's fan would cover the notch.
+std::string l_shaped_obj() {
+  const double xy[6][2] = {{2, 1}, {1, 1}, {1, 2}, {0, 2}, {0, 0}, {2, 0}};
+  std::string s;
+  for (const auto& p : xy)
+    s += "v " + std::to_string(p[0]) + " " + std::to_string(p[1]) + " " + std::to_string(0.5 * p[0]) + "\n";
+  return s + "f 1 2 3 4 5 6\n";
+}
+
+TEST(ReadObj, ConcavePolygonIsEarClippedNotFanned) {
+  const TriangleMesh m = read_obj_from_memory(l_shaped_obj(), "l.obj");
+  ASSERT_EQ(m.num_faces(), 4);
+  double area = 0;
+  for (Eigen::Index f = 0; f < m.num_faces(); ++f) {
+    const Vec3 a = m.V.row(m.F(f, 0)), b = m.V.row(m.F(f, 1)), c = m.V.row(m.F(f, 2));
+    const Vec3 n = (b - a).cross(c - a);
+    EXPECT_GT(n.z(), 0) << "triangle " << f << " keeps the polygon's winding";
+    area += 0.5 * n.z();  // the area projected on xy
+    // No triangle covers the notch x, y in (1, 2): its centroid is inside the L.
+    const Vec3 g = (a + b + c) / 3;
+    EXPECT_FALSE(g.x() > 1 && g.y() > 1) << "triangle " << f << " covers the notch";
+  }
+  EXPECT_NEAR(area, 3.0, 1e-12);
+}
+
+TEST(ReadObj, ConvexPolygonWithCollinearCornersKeepsTheFan) {
+  const TriangleMesh m =
+      read_obj_from_memory("v 0 0 0\nv 1 0 0\nv 2 0 0\nv 2 1 0\nv 0 1 0\nf 1 2 3 4 5\n", "c.obj");
+  ASSERT_EQ(m.num_faces(), 3);
+  EXPECT_EQ(m.F.row(0), (Eigen::RowVector3i(0, 1, 2)));
+  EXPECT_EQ(m.F.row(1), (Eigen::RowVector3i(0, 2, 3)));
+  EXPECT_EQ(m.F.row(2), (Eigen::RowVector3i(0, 3, 4)));
+}
+
 TEST(ReadObj, VertexColoursKeptOnlyWhenEveryVertexHasThem) {
   const TriangleMesh a =
       read_obj_from_memory("v 0 0 0 1 0 0.5\nv 1 0 0 0 1 0\nv 0 1 0 0 0 1\nf 1 2 3\n", "a.obj");

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <cstring>
+#include <iterator>
 #include <string>
 
 #include "breastfit/core/errors.h"
@@ -110,6 +111,54 @@ TEST(ReadPly, FacesRepeatingAVertexAreDroppedZeroAreaKept) {
   ASSERT_EQ(m.num_faces(), 2);
   EXPECT_EQ(m.F.row(0), (Eigen::RowVector3i(0, 1, 2)));
   EXPECT_EQ(m.F.row(1), (Eigen::RowVector3i(0, 1, 3)));
+}
+
+/// Six vertices on a 2 x 3 grid; one strip 0 1 2 3 makes two triangles, the restart -1 separates
+/// a second strip 2 3 4 5 5 whose repeated index makes a degenerate triangle to skip.
+constexpr int kStrip[] = {0, 1, 2, 3, -1, 2, 3, 4, 5, 5};
+const Eigen::RowVector3i kStripTriangles[] = {{0, 1, 2}, {2, 1, 3}, {2, 3, 4}, {4, 3, 5}};
+
+void expect_strip_triangles(const TriangleMesh& m) {
+  ASSERT_EQ(m.num_vertices(), 6);
+  ASSERT_EQ(m.num_faces(), 4);
+  for (int f = 0; f < 4; ++f) EXPECT_EQ(m.F.row(f), kStripTriangles[f]) << "triangle " << f;
+}
+
+TEST(ReadPly, AsciiTriangleStripsAreTriangulatedWithAlternatingWinding) {
+  std::string s =
+      "ply\nformat ascii 1.0\nelement vertex 6\nproperty float x\nproperty float y\n"
+      "property float z\nelement tristrips 1\nproperty list int int vertex_indices\nend_header\n"
+      "0 0 0\n0 1 0\n1 0 0\n1 1 0\n2 0 0\n2 1 0\n10";
+  for (int i : kStrip) s += " " + std::to_string(i);
+  s += "\n";
+  expect_strip_triangles(read_ply_from_memory(s, "strip.ply"));
+}
+
+TEST(ReadPly, BinaryTriangleStripsAreTriangulated) {
+  for (bool big : {false, true}) {
+    SCOPED_TRACE(big ? "big endian" : "little endian");
+    std::string s = "ply\nformat ";
+    s += big ? "binary_big_endian" : "binary_little_endian";
+    s +=
+        " 1.0\nelement vertex 6\nproperty float x\nproperty float y\nproperty float z\n"
+        "element tristrips 1\nproperty list uint int vertex_indices\nend_header\n";
+    for (int i = 0; i < 6; ++i) {
+      put(s, static_cast<float>(i / 2), big);
+      put(s, static_cast<float>(i % 2), big);
+      put(s, 0.0f, big);
+    }
+    put(s, static_cast<std::uint32_t>(std::size(kStrip)), big);
+    for (int i : kStrip) put(s, i, big);
+    expect_strip_triangles(read_ply_from_memory(s, "strip.ply"));
+  }
+}
+
+TEST(ReadPly, TriangleStripIndexOutOfRangeIsAnError) {
+  const std::string s =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nelement tristrips 1\nproperty list int int vertex_indices\nend_header\n"
+      "0 0 0\n0 1 0\n1 0 0\n4 0 1 2 -2\n";
+  EXPECT_THROW(read_ply_from_memory(s, "strip.ply"), IoError);
 }
 
 TEST(ReadPly, PerVertexTexcoordsAndNonFiniteNormalsDropped) {

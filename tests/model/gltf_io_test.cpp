@@ -197,6 +197,45 @@ TEST(GltfIo, MeshWithoutSkinGetsOneRootBone) {
   EXPECT_LT((m.bones[0].pivot - m.rest.V.colwise().mean().transpose()).norm(), 1e-9);
 }
 
+/// A glTF with no skin whose one primitive draws the 4 vertices of a unit square (in metres) in
+/// the given mode without an index accessor; the buffer is an embedded base64 data URI.
+std::string square_gltf(int mode) {
+  const float xyz[12] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0};
+  std::string bytes(reinterpret_cast<const char*>(xyz), sizeof(xyz));
+  static const char* digits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string b64;
+  for (size_t i = 0; i < bytes.size(); i += 3) {  // 48 bytes: no padding needed
+    const auto a = static_cast<unsigned char>(bytes[i]), b = static_cast<unsigned char>(bytes[i + 1]),
+               c = static_cast<unsigned char>(bytes[i + 2]);
+    const unsigned v = (a << 16) | (b << 8) | c;
+    for (int k = 3; k >= 0; --k) b64 += digits[(v >> (6 * k)) & 63];
+  }
+  nlohmann::json j = {
+      {"asset", {{"version", "2.0"}}},
+      {"nodes", {{{"mesh", 0}}}},
+      {"meshes", {{{"primitives", {{{"attributes", {{"POSITION", 0}}}, {"mode", mode}}}}}}},
+      {"accessors",
+       {{{"bufferView", 0}, {"componentType", 5126}, {"count", 4}, {"type", "VEC3"}, {"min", {0, 0, 0}},
+         {"max", {1, 1, 0}}}}},
+      {"bufferViews", {{{"buffer", 0}, {"byteLength", 48}}}},
+      {"buffers", {{{"byteLength", 48}, {"uri", "data:application/octet-stream;base64," + b64}}}}};
+  return j.dump();
+}
+
+TEST(GltfIo, TriangleStripAndFanPrimitivesAreTriangulated) {
+  const auto dir = test::temp_dir();
+  std::ofstream(dir / "strip.gltf") << square_gltf(5);
+  const RiggedModel strip = load_gltf(dir / "strip.gltf");
+  ASSERT_EQ(strip.rest.num_faces(), 2);
+  EXPECT_EQ(strip.rest.F.row(0), (Eigen::RowVector3i(0, 1, 2)));
+  EXPECT_EQ(strip.rest.F.row(1), (Eigen::RowVector3i(2, 1, 3)));
+  std::ofstream(dir / "fan.gltf") << square_gltf(6);
+  const RiggedModel fan = load_gltf(dir / "fan.gltf");
+  ASSERT_EQ(fan.rest.num_faces(), 2);
+  EXPECT_EQ(fan.rest.F.row(0), (Eigen::RowVector3i(0, 1, 2)));
+  EXPECT_EQ(fan.rest.F.row(1), (Eigen::RowVector3i(0, 2, 3)));
+}
+
 TEST(GltfIo, BadFilesRaiseIoError) {
   const auto dir = test::temp_dir();
   EXPECT_THROW(load_gltf(dir / "missing.glb"), IoError);

@@ -25,10 +25,15 @@ std::string lower_extension(const std::filesystem::path& path) {
 [[noreturn]] void unknown_extension(const std::filesystem::path& path, const std::string& ext) {
   throw IoError(path.string(), (ext.empty() ? std::string("no file extension")
                                             : "unknown mesh extension '" + ext + "'") +
-                                   " (supported: .ply, .obj, .stl)");
+                                   " (supported: " + std::string(kMeshExtensions) + ")");
 }
 
 }  // namespace
+
+bool has_mesh_extension(const std::filesystem::path& path) {
+  const std::string ext = lower_extension(path);
+  return ext == ".ply" || ext == ".obj" || ext == ".stl";
+}
 
 TriangleMesh read_mesh(const std::filesystem::path& path) {
   const std::string ext = lower_extension(path);

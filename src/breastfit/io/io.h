@@ -14,10 +14,14 @@
 ///   breastfit::io::write_mesh("scan.obj", scan, {.binary = false, .normals = true});
 /// \endcode
 #include <filesystem>
+#include <string_view>
 
 #include "breastfit/mesh/triangle_mesh.h"
 
 namespace breastfit::io {
+
+/// The mesh file extensions read_mesh and write_mesh accept, as error messages list them.
+inline constexpr std::string_view kMeshExtensions = ".ply, .obj, .stl";
 
 /// How write_mesh and the per-format writers encode a mesh.
 struct MeshWriteOptions {
@@ -30,6 +34,9 @@ struct MeshWriteOptions {
   bool double_precision = false;  ///< PLY: store x,y,z (and normals) as double instead of float
                                   ///< (float is the scanner convention and halves the file size)
 };
+
+/// Whether the path ends in one of kMeshExtensions (case-insensitive).
+bool has_mesh_extension(const std::filesystem::path& path);
 
 /// Reads a mesh (or point cloud, F empty) choosing the reader by extension (.ply .obj .stl).
 /// \param[in] path  file to read

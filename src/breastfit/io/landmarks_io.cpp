@@ -7,6 +7,7 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <string>
@@ -72,14 +73,92 @@ std::vector<NamedPoint> parse_plain_json(const ordered_json& doc, const std::vec
   return pts;
 }
 
+/// The fields of a comma-separated line, each trimmed.
+std::vector<std::string_view> split_commas(std::string_view line) {
+  std::vector<std::string_view> fields;
+  size_t start = 0;
+  while (true) {
+    const size_t comma = line.find(',', start);
+    fields.push_back(trim(line.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start)));
+    if (comma == std::string_view::npos) break;
+    start = comma + 1;
+  }
+  return fields;
+}
+
+/// The next line of `text` (removed from it, without its '\n').
+std::string_view next_line(std::string_view& text) {
+  const size_t eol = text.find('\n');
+  const std::string_view line = text.substr(0, eol);
+  text.remove_prefix(eol == std::string_view::npos ? text.size() : eol + 1);
+  return line;
+}
+
+/// The value of a "# key = value" header line of a .fcsv file (`line` after its '#'), or
+/// nullopt when the line sets another key.
+std::optional<std::string_view> fcsv_header(std::string_view line, std::string_view key) {
+  line = trim(line);
+  if (line.substr(0, key.size()) != key) return std::nullopt;
+  line = trim(line.substr(key.size()));
+  if (line.empty() || line.front() != '=') return std::nullopt;
+  return trim(line.substr(1));
+}
+
+/// A legacy 3D Slicer fiducial list (.fcsv): '#' header lines, then one row per point. The
+/// columns header names the x, y, z and label columns (Slicer's order when absent); the
+/// CoordinateSystem header "RAS" or "0" (the default) is converted to LPS by negating x and y
+/// (as the markups reader does), "LPS" or "1" is kept.
+std::vector<NamedPoint> parse_fcsv(std::string_view text, const std::string& source) {
+  std::vector<std::string_view> columns = split_commas("id,x,y,z,ow,ox,oy,oz,vis,sel,lock,label,desc,associatedNodeID");
+  bool ras = true;
+  std::vector<NamedPoint> pts;
+  size_t line_no = 0;
+  while (!text.empty()) {
+    std::string_view line = trim(next_line(text));
+    ++line_no;
+    const std::string where = "line " + std::to_string(line_no) + ": ";
+    if (line.empty()) continue;
+    if (line.front() == '#') {
+      if (const auto cs = fcsv_header(line.substr(1), "CoordinateSystem")) {
+        if (*cs == "RAS" || *cs == "0") {
+          ras = true;
+        } else if (*cs == "LPS" || *cs == "1") {
+          ras = false;
+        } else {
+          throw IoError(source, where + "unsupported CoordinateSystem '" + std::string(*cs) +
+                                    "' (expected RAS, LPS, 0 or 1)");
+        }
+      } else if (const auto cols = fcsv_header(line.substr(1), "columns")) {
+        columns = split_commas(*cols);
+      }
+      continue;
+    }
+    const std::vector<std::string_view> fields = split_commas(line);
+    double xyz[3];
+    const char* axes[3] = {"x", "y", "z"};
+    for (int a = 0; a < 3; ++a) {
+      const auto col = std::find(columns.begin(), columns.end(), axes[a]);
+      if (col == columns.end()) throw IoError(source, where + "the columns header has no '" + axes[a] + "' column");
+      const auto i = static_cast<size_t>(col - columns.begin());
+      if (i >= fields.size() || !detail::parse_double(fields[i], xyz[a]))
+        throw IoError(source, where + "expected a number in column '" + axes[a] + "'");
+    }
+    const auto label = std::find(columns.begin(), columns.end(), "label");
+    const auto li = static_cast<size_t>(label - columns.begin());
+    if (label == columns.end() || li >= fields.size() || fields[li].empty())
+      throw IoError(source, where + "the point has no label");
+    const double sign = ras ? -1.0 : 1.0;
+    pts.push_back({std::string(fields[li]), Vec3(sign * xyz[0], sign * xyz[1], xyz[2])});
+  }
+  return pts;
+}
+
 std::vector<NamedPoint> parse_csv(std::string_view text, const std::string& source) {
   std::vector<NamedPoint> pts;
   size_t line_no = 0;
   bool seen_content = false;
   while (!text.empty()) {
-    const size_t eol = text.find('\n');
-    std::string_view line = text.substr(0, eol);
-    text.remove_prefix(eol == std::string_view::npos ? text.size() : eol + 1);
+    std::string_view line = next_line(text);
     ++line_no;
     if (line_no == 1 && line.substr(0, 3) == "\xEF\xBB\xBF") line.remove_prefix(3);  // UTF-8 BOM
     line = trim(line);
@@ -87,13 +166,7 @@ std::vector<NamedPoint> parse_csv(std::string_view text, const std::string& sour
 
     std::vector<std::string_view> fields;
     if (line.find(',') != std::string_view::npos) {
-      size_t start = 0;
-      while (true) {
-        const size_t comma = line.find(',', start);
-        fields.push_back(trim(line.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start)));
-        if (comma == std::string_view::npos) break;
-        start = comma + 1;
-      }
+      fields = split_commas(line);
       if (fields.size() == 5 && fields.back().empty()) fields.pop_back();  // trailing comma
     } else {
       std::string_view rest = line;
@@ -149,15 +222,19 @@ LandmarkSet read_landmarks(const std::filesystem::path& path, const LandmarkRead
   const std::string name = lower(path.filename().string());
   const bool is_json = ends_with(name, ".json");
   const bool is_csv = ends_with(name, ".csv");
-  if (!is_json && !is_csv)
+  const bool is_fcsv = ends_with(name, ".fcsv");
+  if (!is_json && !is_csv && !is_fcsv)
     throw IoError(source, "unsupported landmark file extension '" + path.extension().string() +
-                              "' (expected .mrk.json, .json or .csv)");
+                              "' (supported landmark files: " + std::string(kLandmarkExtensions) + ")");
   const std::string text = read_text(path);
   if (is_blank_text(text)) throw IoError(source, "empty file");
 
   LandmarkSet out;
   if (is_csv) {
     out.points = parse_csv(text, source);
+  } else if (is_fcsv) {
+    out.points = parse_fcsv(text, source);
+    out.declared_units = "mm";  // Slicer's fiducial lists are always in millimetres
   } else {
     // Parse once, recording top-level keys in order (to catch duplicates nlohmann would merge).
     std::vector<std::string> keys;
@@ -179,6 +256,7 @@ LandmarkSet read_landmarks(const std::filesystem::path& path, const LandmarkRead
       const MarkupsFile mf = parse_markups(text, source, {.convert_to_mm = false});
       out.points = mf.markups.points;
       out.declared_units = mf.units;
+      out.warnings = mf.warnings;
     } else {
       std::vector<std::string> unique_keys;
       std::set<std::string> seen;

@@ -83,6 +83,12 @@ bool is_ras(const json& markup, const std::string& source, const std::string& wh
   throw IoError(source, what + ": unsupported coordinateSystem '" + cs + "' (expected LPS or RAS)");
 }
 
+/// Slicer's positionStatus of a control point that has no position: skipped while placing
+/// ("missing"), never placed ("undefined") or still being placed ("preview").
+bool is_unplaced(const json& status) {
+  return status == "missing" || status == "undefined" || status == "preview";
+}
+
 }  // namespace
 
 MarkupsFile parse_markups(std::string_view text, const std::string& source,
@@ -109,10 +115,11 @@ MarkupsFile parse_markups(std::string_view text, const std::string& source,
       what += '\'';
     }
     const bool is_points = type == "Fiducial";
-    const bool is_curve = type == "Curve" || type == "ClosedCurve";
+    const bool is_curve = type == "Curve" || type == "ClosedCurve" || type == "Line";
     if (!is_points && !is_curve) {
       if (type.empty()) throw IoError(source, what + " has no \"type\"");
-      continue;  // Line, Angle, Plane, ROI, ...: not used by breastfit
+      out.warnings.push_back(what + " of type " + type + " skipped (breastfit reads Fiducial, Curve, ClosedCurve and Line)");
+      continue;
     }
     const bool ras = is_ras(mk, source, what);
     const std::string units = units_of(mk, source, what);
@@ -142,7 +149,11 @@ MarkupsFile parse_markups(std::string_view text, const std::string& source,
           pwhat += label;
           pwhat += '\'';
         }
-        if (cp.contains("positionStatus") && cp["positionStatus"] == "undefined") continue;
+        if (const auto status = cp.find("positionStatus"); status != cp.end() && is_unplaced(*status)) {
+          out.warnings.push_back(pwhat + " skipped (positionStatus \"" + status->get<std::string>() +
+                                 "\": not placed in Slicer)");
+          continue;
+        }
         if (!cp.contains("position")) throw IoError(source, pwhat + " has no position");
         Vec3 p;
         switch (read_vec3(cp["position"], p)) {

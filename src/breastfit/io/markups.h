@@ -3,12 +3,15 @@
 /// landmarks and drawings out.
 ///
 /// Reading accepts any number of markups: "Fiducial" point lists (each control point's `label`
-/// is the point's name), "Curve" and "ClosedCurve" (the markup's `name` is the curve's name);
-/// other markup types (Line, Angle, Plane, ROI) are ignored. `coordinateSystem` "LPS" (the
+/// is the point's name), "Curve", "ClosedCurve" and "Line" (the markup's `name` is the curve's
+/// name; a Line is an open curve of its two points); other markup types (Angle, Plane, ROI, ...)
+/// are skipped with a warning naming them (MarkupsFile::warnings). `coordinateSystem` "LPS" (the
 /// default when absent) or "RAS" (converted to LPS by negating x and y); `coordinateUnits` "mm"
 /// (the default when absent) or "m", as a string or as a coded array such as
-/// ["m", "UCUM", "meter"]. Control points whose `positionStatus` is "undefined" (placeholders
-/// not yet placed in Slicer) are skipped; any other control point must have a finite 3-vector
+/// ["m", "UCUM", "meter"]. Control points whose `positionStatus` is "missing", "undefined" or
+/// "preview" (skipped, never placed or still being placed in Slicer; their `position` may be ""
+/// or absent) are left out with a warning naming them (the rest of the file is kept); any other
+/// control point must have a finite 3-vector
 /// `position`. Bare NaN / Infinity tokens (as Python's json module writes them) are reported as
 /// non-finite coordinates of the point they belong to, not as malformed JSON.
 ///
@@ -20,6 +23,7 @@
 #include <filesystem>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "breastfit/mesh/landmarks.h"
 
@@ -35,9 +39,11 @@ struct MarkupsReadOptions {
 struct MarkupsFile {
   Markups markups;          ///< positions in LPS, in `units`
   std::string units = "mm"; ///< "mm" or "m": units of the positions in `markups`
+  std::vector<std::string> warnings;  ///< what was skipped (markup types, unplaced points)
 };
 
-/// Reads a markups file; positions in LPS millimetres.
+/// Reads a markups file; positions in LPS millimetres. Drops the warnings (read_markups_file
+/// keeps them).
 /// \param[in] path  .mrk.json file
 /// \throws IoError(path, problem) for a missing/unreadable file, malformed JSON, a document
 ///         that is not a markups file, an unsupported coordinate system or units, or a control

@@ -1,6 +1,7 @@
 #include "breastfit/io/read_obj.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -11,6 +12,7 @@
 #include "breastfit/core/errors.h"
 #include "breastfit/io/detail/file_bytes.h"
 #include "breastfit/io/detail/mesh_arrays.h"
+#include "breastfit/io/detail/polygon_triangulation.h"
 #include "breastfit/io/detail/text.h"
 
 namespace breastfit::io {
@@ -174,8 +176,13 @@ class ObjParser {
       fail("face has " + std::to_string(v_.size()) + " vert" + (v_.size() == 1 ? "ex" : "ices") +
            " (a face needs at least 3)");
     }
-    for (std::size_t i = 1; i + 1 < v_.size(); ++i) {
-      const std::size_t c[3] = {0, i, i + 1};
+    positions_.clear();
+    for (Index v : v_) {
+      const auto at = 3 * static_cast<std::size_t>(v);
+      positions_.emplace_back(data_.V[at], data_.V[at + 1], data_.V[at + 2]);
+    }
+    detail::triangulate_polygon(positions_, triangles_);
+    for (const auto& c : triangles_) {
       if (v_[c[0]] == v_[c[1]] || v_[c[1]] == v_[c[2]] || v_[c[0]] == v_[c[2]]) continue;
       for (std::size_t k : c) {
         data_.tris.push_back(v_[k]);
@@ -190,6 +197,8 @@ class ObjParser {
   std::uint64_t line_no_ = 0;
   ObjData data_;
   std::vector<Index> v_, vt_, vn_;
+  std::vector<Vec3> positions_;                        // of the face's corners
+  std::vector<std::array<std::size_t, 3>> triangles_;  // of the face, as corner triples
 };
 
 /// Per-vertex normals from the corners' vn indices: a vertex whose corners all use one vn gets

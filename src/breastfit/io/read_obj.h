@@ -4,7 +4,8 @@
 /// Reads `v x y z [w]` (or `v x y z r g b`: colours kept when every vertex has them; values in
 /// [0,1] are scaled to 0..255), `vt u [v [w]]` (kept as UV/FUV when every face has them),
 /// `vn x y z` (mapped to per-vertex normals through the faces), `f` in all index forms (v, v/vt,
-/// v//vn, v/vt/vn) with negative (relative) indices; polygons are fan-triangulated and triangles
+/// v//vn, v/vt/vn) with negative (relative) indices; convex polygons are fan-triangulated,
+/// concave ones ear-clipped in their best-fit plane (detail/polygon_triangulation.h); triangles
 /// repeating a vertex are dropped. Lines ending in `\` continue on the next line. g, o, s,
 /// usemtl, mtllib, l, p and unknown statements are ignored.
 #include <filesystem>

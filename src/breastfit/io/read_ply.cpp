@@ -14,6 +14,7 @@
 #include "breastfit/io/detail/file_bytes.h"
 #include "breastfit/io/detail/mesh_arrays.h"
 #include "breastfit/io/detail/text.h"
+#include "breastfit/mesh/index_triangulation.h"
 
 namespace breastfit::io {
 namespace {
@@ -547,22 +548,38 @@ int find_face_list(const PlyElement& element) {
   return -1;
 }
 
+/// How an element's index lists make triangles: `face` lists are polygons (at least 3 indices,
+/// fan-triangulated); `tristrips` lists are triangle strips separated by the restart index -1.
+enum class IndexLists { Polygons, Strips };
+
+/// Appends the triangles of the strips in `indices` (separated by -1) to `tris`.
+void append_strips(const std::vector<Index>& indices, std::vector<Index>& tris) {
+  std::size_t start = 0;
+  for (std::size_t k = 0; k <= indices.size(); ++k) {
+    if (k < indices.size() && indices[k] >= 0) continue;
+    mesh::append_strip_triangles(indices.data() + start, k - start, tris);
+    start = k + 1;
+  }
+}
+
 template <typename Source>
-std::vector<Index> read_faces(Source& source, const PlyElement& element, std::uint64_t num_vertices,
-                              const std::string& name) {
+std::vector<Index> read_index_lists(Source& source, const PlyElement& element,
+                                    std::uint64_t num_vertices, IndexLists kind,
+                                    const std::string& name) {
   const int list = find_face_list(element);
   if (list < 0 && element.count > 0) {
-    throw IoError(name,
-                  "the 'face' element has no 'vertex_indices' (or 'vertex_index') list property");
+    throw IoError(name, "the '" + element.name +
+                            "' element has no 'vertex_indices' (or 'vertex_index') list property");
   }
   std::vector<Index> tris;
-  if (list >= 0) {
+  if (list >= 0 && kind == IndexLists::Polygons) {
     // A face holds at least 3 indices, so the remaining data bounds the triangles to reserve
     // (the header's count alone could be a lie far beyond the file size).
     const PlyType index_type = element.properties[static_cast<std::size_t>(list)].type;
     tris.reserve(
         3 * static_cast<std::size_t>(std::min(element.count, source.capacity(index_type) / 3)));
   }
+  const double lowest = kind == IndexLists::Strips ? -1.0 : 0.0;  // -1 restarts a strip
   std::vector<Index> corners;
   for (std::uint64_t i = 0; i < element.count; ++i) {
     for (std::size_t j = 0; j < element.properties.size(); ++j) {
@@ -575,7 +592,7 @@ std::vector<Index> read_faces(Source& source, const PlyElement& element, std::ui
         continue;
       }
       const std::uint64_t count = read_list_count(source, name, element, i, p);
-      if (count < 3) {
+      if (kind == IndexLists::Polygons && count < 3) {
         throw IoError(name, source.where() + "face " + std::to_string(i) + " has " +
                                 plural(count, "vertex index", "vertex indices") +
                                 " (a face needs at least 3)");
@@ -585,14 +602,19 @@ std::vector<Index> read_faces(Source& source, const PlyElement& element, std::ui
         double v = 0;
         const Status s = source.read(p.type, v);
         if (s != Status::Ok) fail_value(source, s, name, element, i, p);
-        if (!(v >= 0 && v < static_cast<double>(num_vertices) && v == std::floor(v))) {
-          throw IoError(name, source.where() + "face " + std::to_string(i) + " references vertex " +
-                                  detail::format_double(v) + " but the file has " +
+        if (!(v >= lowest && v < static_cast<double>(num_vertices) && v == std::floor(v))) {
+          throw IoError(name, source.where() + element.name + " " + std::to_string(i) +
+                                  " references vertex " + detail::format_double(v) +
+                                  " but the file has " +
                                   plural(num_vertices, "vertex", "vertices"));
         }
         corners.push_back(static_cast<Index>(v));
       }
-      detail::append_fan(corners.data(), corners.size(), tris);
+      if (kind == IndexLists::Polygons) {
+        mesh::append_fan_triangles(corners.data(), corners.size(), tris);
+      } else {
+        append_strips(corners, tris);
+      }
     }
   }
   return tris;
@@ -602,14 +624,15 @@ template <typename Source>
 TriangleMesh read_body(Source& source, const PlyHeader& header, const std::string& name) {
   const PlyElement* vertex = nullptr;
   const PlyElement* face = nullptr;
+  const PlyElement* strips = nullptr;
   for (const PlyElement& e : header.elements) {
-    if (e.name == "vertex") {
-      if (vertex != nullptr) throw IoError(name, "the header has two 'vertex' elements");
-      vertex = &e;
-    } else if (e.name == "face") {
-      if (face != nullptr) throw IoError(name, "the header has two 'face' elements");
-      face = &e;
-    }
+    const PlyElement** slot = e.name == "vertex"      ? &vertex
+                              : e.name == "face"      ? &face
+                              : e.name == "tristrips" ? &strips
+                                                      : nullptr;
+    if (slot == nullptr) continue;
+    if (*slot != nullptr) throw IoError(name, "the header has two '" + e.name + "' elements");
+    *slot = &e;
   }
   if (vertex == nullptr) throw IoError(name, "the header has no 'vertex' element");
   if (vertex->count == 0) throw IoError(name, "the file has no vertices");
@@ -624,8 +647,10 @@ TriangleMesh read_body(Source& source, const PlyHeader& header, const std::strin
     if (e.properties.empty()) continue;  // nothing stored, whatever the count
     if (&e == vertex) {
       vertices = read_vertices(source, e, name);
-    } else if (&e == face) {
-      tris = read_faces(source, e, vertex->count, name);
+    } else if (&e == face || &e == strips) {
+      const std::vector<Index> more = read_index_lists(
+          source, e, vertex->count, &e == face ? IndexLists::Polygons : IndexLists::Strips, name);
+      tris.insert(tris.end(), more.begin(), more.end());
     } else {
       skip_element(source, e, name);
     }

@@ -14,6 +14,7 @@
 #include "breastfit/io/detail/file_bytes.h"
 #include "breastfit/io/detail/mesh_arrays.h"
 #include "breastfit/io/detail/text.h"
+#include "breastfit/mesh/index_triangulation.h"
 
 namespace breastfit::io {
 namespace {
@@ -121,7 +122,7 @@ TriangleMesh read_binary(std::string_view bytes, std::uint32_t count, const std:
       }
       corners[k] = merger.add(xyz[0], xyz[1], xyz[2]);
     }
-    detail::append_fan(corners, 3, tris);
+    mesh::append_fan_triangles(corners, 3, tris);
   }
   return finish(merger, tris, name);
 }
@@ -169,7 +170,7 @@ TriangleMesh read_ascii(std::string_view bytes, const std::string& name) {
         throw IoError(name, at + "facet " + std::to_string(facets) + " has " +
                                 std::to_string(loop.size()) + " vertices (a facet needs 3)");
       }
-      detail::append_fan(loop.data(), loop.size(), tris);
+      mesh::append_fan_triangles(loop.data(), loop.size(), tris);
       in_loop = false;
       ++facets;
     } else {

@@ -59,6 +59,7 @@ struct Markups {
 struct LandmarkSet {
   std::vector<NamedPoint> points;            ///< in file order
   std::optional<std::string> declared_units; ///< "mm", "m", or nullopt (undeclared)
+  std::vector<std::string> warnings;         ///< what the reader skipped (e.g. unplaced points)
 
   /// Position of the landmark with this name, or nullptr when absent.
   const Vec3* find(std::string_view name) const {

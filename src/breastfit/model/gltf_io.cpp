@@ -13,6 +13,7 @@
 #include <tiny_gltf.h>
 
 #include "breastfit/core/errors.h"
+#include "breastfit/mesh/index_triangulation.h"
 #include "breastfit/mesh/normals.h"
 
 namespace breastfit::model {
@@ -420,7 +421,9 @@ RawMesh Loader::read_primitives() const {
 
 void Loader::read_primitive(size_t pi, RawMesh& raw) const {
   const tg::Primitive& prim = mesh_->primitives[pi];
-  if (prim.mode != -1 && prim.mode != TINYGLTF_MODE_TRIANGLES) return;
+  if (prim.mode != -1 && prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+      prim.mode != TINYGLTF_MODE_TRIANGLE_FAN)
+    return;
   const std::string pw = "primitive " + std::to_string(pi);
   const auto pos_it = prim.attributes.find("POSITION");
   if (pos_it == prim.attributes.end()) fail(pw + " has no POSITION attribute");
@@ -434,29 +437,38 @@ void Loader::read_primitive(size_t pi, RawMesh& raw) const {
   read_morph_targets(prim, pw, base, n, raw);
 }
 
-/// The primitive's triangles (indexed or not), offset by `base`, the primitive's first vertex.
+/// The primitive's triangles (indexed or not), offset by `base`, the primitive's first vertex. Mode 4 lists
+/// triangles; strips (mode 5) and fans (mode 6) are triangulated, skipping triangles that repeat a vertex.
 void Loader::read_faces(const tg::Primitive& prim, const std::string& pw, size_t base, size_t n,
                         RawMesh& raw) const {
+  std::vector<Index> order;  // the vertex sequence, primitive-local
   if (prim.indices >= 0) {
     const AccessorData idx = read_accessor(prim.indices, TINYGLTF_TYPE_SCALAR, pw + " indices");
-    if (idx.count % 3 != 0) fail(pw + ": index count " + std::to_string(idx.count) + " is not a multiple of 3");
-    for (size_t t = 0; t < idx.count / 3; ++t) {
-      Eigen::Vector3i f;
-      for (int c = 0; c < 3; ++c) {
-        const double v = idx.values[3 * t + c];
-        if (v < 0 || v >= static_cast<double>(n) || v != std::floor(v))
-          fail(pw + ": index " + std::to_string(static_cast<long long>(v)) + " out of range [0, " +
-               std::to_string(n) + ")");
-        f[c] = static_cast<int>(base + static_cast<size_t>(v));
-      }
-      raw.faces.push_back(f);
+    order.reserve(idx.count);
+    for (size_t k = 0; k < idx.count; ++k) {
+      const double v = idx.values[k];
+      if (v < 0 || v >= static_cast<double>(n) || v != std::floor(v))
+        fail(pw + ": index " + std::to_string(static_cast<long long>(v)) + " out of range [0, " + std::to_string(n) +
+             ")");
+      order.push_back(static_cast<Index>(v));
     }
   } else {
-    if (n % 3 != 0) fail(pw + ": non-indexed vertex count is not a multiple of 3");
-    for (size_t t = 0; t < n / 3; ++t)
-      raw.faces.emplace_back(static_cast<int>(base + 3 * t), static_cast<int>(base + 3 * t + 1),
-                             static_cast<int>(base + 3 * t + 2));
+    for (size_t k = 0; k < n; ++k) order.push_back(static_cast<Index>(k));
   }
+  std::vector<Index> tris;
+  if (prim.mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+    mesh::append_strip_triangles(order.data(), order.size(), tris);
+  } else if (prim.mode == TINYGLTF_MODE_TRIANGLE_FAN) {
+    mesh::append_fan_triangles(order.data(), order.size(), tris);
+  } else if (order.size() % 3 != 0) {
+    fail(pw + (prim.indices >= 0 ? ": index count " + std::to_string(order.size()) + " is not a multiple of 3"
+                                 : std::string(": non-indexed vertex count is not a multiple of 3")));
+  } else {
+    tris = std::move(order);
+  }
+  for (size_t t = 0; t < tris.size() / 3; ++t)
+    raw.faces.emplace_back(static_cast<int>(base) + tris[3 * t], static_cast<int>(base) + tris[3 * t + 1],
+                           static_cast<int>(base) + tris[3 * t + 2]);
 }
 
 /// JOINTS_k / WEIGHTS_k (k < 2) of the primitive: the non-zero influences of its vertices.

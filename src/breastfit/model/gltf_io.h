@@ -30,7 +30,8 @@ namespace breastfit::model {
 ///
 /// The mesh is the first node with both a mesh and a skin (else the first node with a mesh; it
 /// then gets a single bone "root" at the mesh centroid). All triangle primitives of that mesh
-/// are concatenated in order (face indices of landmarks and drawings refer to that order).
+/// (mode 4 triangles, 5 strips and 6 fans; strips and fans triangulated) are concatenated in
+/// order (face indices of landmarks and drawings refer to that order).
 /// Up to 8 influences per vertex (JOINTS_0/WEIGHTS_0, JOINTS_1/WEIGHTS_1) are read and
 /// renormalised; a vertex without any weight is bound to the first root bone. Bones are
 /// ordered parents first (the joint order of the skin otherwise). Morph targets may use sparse

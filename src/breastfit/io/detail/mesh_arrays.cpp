@@ -6,21 +6,6 @@
 
 namespace breastfit::io::detail {
 
-int append_fan(const Index* corners, std::size_t count, std::vector<Index>& tris) {
-  int appended = 0;
-  for (std::size_t i = 1; i + 1 < count; ++i) {
-    const Index a = corners[0];
-    const Index b = corners[i];
-    const Index c = corners[i + 1];
-    if (a == b || b == c || a == c) continue;
-    tris.push_back(a);
-    tris.push_back(b);
-    tris.push_back(c);
-    ++appended;
-  }
-  return appended;
-}
-
 namespace {
 template <typename Matrix, typename T>
 Matrix copy_rows(const std::vector<T>& flat) {

@@ -8,12 +8,6 @@
 
 namespace breastfit::io::detail {
 
-/// Appends the fan triangulation (c0, ci, ci+1) of the polygon `corners[0..count)` to `tris`
-/// (flat, 3 indices per triangle), skipping triangles that repeat a vertex index.
-/// \pre count >= 3
-/// \return the number of triangles appended
-int append_fan(const Index* corners, std::size_t count, std::vector<Index>& tris);
-
 /// Copies a flat row-major array with `cols` columns into a matrix with that many columns.
 Points to_points(const std::vector<double>& flat);
 Triangles to_triangles(const std::vector<Index>& flat);
