@@ -47,20 +47,9 @@ FitOptions toy_options() {
   return o;
 }
 
-struct ToyScan {
-  model::RiggedModel m = test::make_toy_model();
-  model::PoseParams truth = test::random_toy_pose(m, 31, 0.4);
-  TriangleMesh mesh = [&] {
-    TriangleMesh t;
-    t.V = model::pose_vertices(m, truth);
-    t.F = m.rest.F;
-    return t;
-  }();
-  std::vector<std::pair<std::string, Vec3>> landmarks() const {
-    std::vector<std::pair<std::string, Vec3>> named;
-    for (const auto& lm : m.landmarks) named.emplace_back(lm.name, lm.point.position(mesh.V, m.rest.F));
-    return named;
-  }
+struct ToyScan : test::ToyScanCase {
+  ToyScan() : ToyScanCase(31, 0.4) {}
+  std::vector<std::pair<std::string, Vec3>> landmarks() const { return named_landmarks(); }
 };
 
 const LandmarkCheck* find(const FitSummary& s, const std::string& name) {

@@ -9,20 +9,9 @@
 namespace breastfit::fit {
 namespace {
 
-struct ToyCase {
-  model::RiggedModel m = test::make_toy_model();
-  model::PoseParams truth = test::random_toy_pose(m, 21, 0.5);
-  TriangleMesh mesh = [&] {
-    TriangleMesh t;
-    t.V = model::pose_vertices(m, truth);
-    t.F = m.rest.F;
-    return t;
-  }();
-  std::vector<LandmarkTarget> landmarks() const {
-    std::vector<std::pair<std::string, Vec3>> named;
-    for (const auto& lm : m.landmarks) named.emplace_back(lm.name, lm.point.position(mesh.V, m.rest.F));
-    return match_landmarks(m, named);
-  }
+struct ToyCase : test::ToyScanCase {
+  ToyCase() : ToyScanCase(21, 0.5) {}
+  std::vector<LandmarkTarget> landmarks() const { return match_landmarks(m, named_landmarks()); }
 };
 
 TEST(StageMinimizer, AStageWithRoomToSpareEndsByConvergenceNotByItsCap) {

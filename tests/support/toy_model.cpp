@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "breastfit/core/rng.h"
+#include "breastfit/model/pose_evaluator.h"
 
 namespace breastfit::test {
 namespace {
@@ -216,6 +217,18 @@ model::PoseParams random_toy_pose(const model::RiggedModel& model, std::uint64_t
     p.alpha[k] = rng.uniform(rest + amplitude * (s.lo - rest), rest + amplitude * (s.hi - rest));
   }
   return p;
+}
+
+ToyScanCase::ToyScanCase(std::uint64_t seed, double amplitude)
+    : m(make_toy_model()), truth(random_toy_pose(m, seed, amplitude)) {
+  mesh.V = model::pose_vertices(m, truth);
+  mesh.F = m.rest.F;
+}
+
+std::vector<std::pair<std::string, Vec3>> ToyScanCase::named_landmarks() const {
+  std::vector<std::pair<std::string, Vec3>> named;
+  for (const auto& lm : m.landmarks) named.emplace_back(lm.name, lm.point.position(mesh.V, m.rest.F));
+  return named;
 }
 
 }  // namespace breastfit::test

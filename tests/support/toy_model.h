@@ -11,6 +11,11 @@
 //  - drawings "sternum" (open, anterior midline) and "breast_contour_R" (closed, around breast_R);
 //  - region "breast_R" (the vertices the breast_R shape moves).
 #include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "breastfit/mesh/triangle_mesh.h"
 
 #include "breastfit/model/pose_params.h"
 #include "breastfit/model/rigged_model.h"
@@ -25,5 +30,16 @@ model::RiggedModel make_toy_model();
 /// translations up to 4·amplitude mm, scales and blendshape weights uniform within their bounds
 /// (shrunk towards the rest value by `amplitude` ∈ (0, 1]).
 model::PoseParams random_toy_pose(const model::RiggedModel& model, std::uint64_t seed, double amplitude = 1.0);
+
+/// A noise-free "scan": the toy model posed by random_toy_pose(seed, amplitude), with its
+/// landmarks exactly on it.
+struct ToyScanCase {
+  ToyScanCase(std::uint64_t seed, double amplitude);
+  model::RiggedModel m;
+  model::PoseParams truth;
+  TriangleMesh mesh;
+  /// The model's landmarks on the posed mesh, by name.
+  std::vector<std::pair<std::string, Vec3>> named_landmarks() const;
+};
 
 }  // namespace breastfit::test
