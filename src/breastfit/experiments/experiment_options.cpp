@@ -8,22 +8,22 @@
 namespace breastfit::experiments {
 
 const std::vector<LambdaSpec>& sensitivity_lambdas() {
-  static const std::vector<LambdaSpec> specs = {{"lambda_data", "λD"},
-                                                {"lambda_scale", "λS"},
-                                                {"lambda_blendshapes", "λBS"},
-                                                {"lambda_joints", "λJ"},
-                                                {"lambda_landmarks", "λL"}};
+  // The paper's λL weighs all 12 landmarks, which the fit splits into material and sliding ones.
+  static const std::vector<LambdaSpec> specs = {{"lambda_data", "λD", {"data"}},
+                                                {"lambda_scale", "λS", {"scale"}},
+                                                {"lambda_blendshapes", "λBS", {"blendshapes"}},
+                                                {"lambda_joints", "λJ", {"joints"}},
+                                                {"lambda_landmarks", "λL", {"landmarks", "sliding_landmarks"}}};
   return specs;
 }
 
 namespace {
-// The energy terms a sensitivity λ stands for: the paper's λL weighs all 12 landmarks, which the
-// fit splits into material and sliding landmarks (fit/energy_terms.h).
+// The terms of a sensitivity λ; any other "lambda_<term>" stands for that one term.
 std::vector<std::string> terms_of(const std::string& field) {
+  for (const auto& spec : sensitivity_lambdas())
+    if (spec.field == field) return spec.terms;
   if (field.rfind("lambda_", 0) != 0) throw InvalidInput("unknown λ '" + field + "'");
-  const std::string term = field.substr(7);
-  if (term == "landmarks") return {"landmarks", "sliding_landmarks"};
-  return {term};
+  return {field.substr(7)};
 }
 }  // namespace
 

@@ -1,6 +1,14 @@
-#include "breastfit/fit/blendshape_prior.h"
+// Blendshape regulariser (paper eq. 6, squared so that it is smooth at 0):
+//   E_BS = 1/λBS · Σ_k α_k²
+#include "breastfit/fit/energy_term.h"
 
 namespace breastfit::fit {
+namespace {
+
+class BlendshapePrior final : public EnergyTerm {
+ public:
+  double evaluate(const TermContext& ctx, double weight, NormalEquations* eq) const override;
+};
 
 double BlendshapePrior::evaluate(const TermContext& ctx, double weight, NormalEquations* eq) const {
   const auto& alpha = ctx.ev.params().alpha;
@@ -15,6 +23,8 @@ double BlendshapePrior::evaluate(const TermContext& ctx, double weight, NormalEq
   }
   return cost;
 }
+
+}  // namespace
 
 TermSpec blendshape_prior_spec() {
   return {"blendshapes", "λBS", 10.0, "no unit", "blendshape regulariser E_BS", false,

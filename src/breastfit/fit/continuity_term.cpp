@@ -1,8 +1,17 @@
-#include "breastfit/fit/continuity_term.h"
+// Joint continuity (stiff penalty): the joint point c_j of every non-root bone, moved by the
+// bone and by its parent, stays in one place:
+//   E_C = 1/λC · Σ_{j≠root} ‖P_parent(j)(c_j) − P_j(c_j)‖²
+#include "breastfit/fit/energy_term.h"
 
 #include "breastfit/fit/row_builder.h"
 
 namespace breastfit::fit {
+namespace {
+
+class ContinuityTerm final : public EnergyTerm {
+ public:
+  double evaluate(const TermContext& ctx, double weight, NormalEquations* eq) const override;
+};
 namespace {
 
 // a − b as one sparse Jacobian (columns of shared parameters merged).
@@ -42,6 +51,8 @@ double ContinuityTerm::evaluate(const TermContext& ctx, double weight, NormalEqu
   }
   return cost;
 }
+
+}  // namespace
 
 TermSpec continuity_term_spec() {
   return {"continuity", "λC", 0.05, "mm²", "joint continuity penalty (stiff)", false,

@@ -1,4 +1,7 @@
-#include "breastfit/fit/data_term.h"
+// The data term (paper eq. 8): model vertex → closest scan point, point-to-plane mixed with
+// point-to-point, robust IRLS weights, averaged over the kept correspondences:
+//   E_D = 1/λD · 1/|C| Σ_{c∈C} w_c [(1−μ)(n_c·(M_i − p_c))² + μ‖M_i − p_c‖²]
+#include "breastfit/fit/energy_term.h"
 
 #include <algorithm>
 
@@ -6,6 +9,12 @@
 #include "breastfit/fit/row_builder.h"
 
 namespace breastfit::fit {
+namespace {
+
+class DataTerm final : public EnergyTerm {
+ public:
+  double evaluate(const TermContext& ctx, double weight, NormalEquations* eq) const override;
+};
 
 double DataTerm::evaluate(const TermContext& ctx, double weight, NormalEquations* eq) const {
   const Points& M = ctx.ev.vertices();
@@ -27,6 +36,8 @@ double DataTerm::evaluate(const TermContext& ctx, double weight, NormalEquations
   }
   return cost;
 }
+
+}  // namespace
 
 TermSpec data_term_spec() {
   return {"data", "λD", 0.25, "mm²", "data term: model → scan, mean squared point-to-plane distance", false,

@@ -8,8 +8,8 @@
 /// A term is described by a TermSpec (name, λ default, units, help) in the table of
 /// energy_terms.h; the options (EnergyWeights), the command-line flags (`--lambda-NAME`), the JSON
 /// keys (`weights.lambda_NAME`) and the energies in report.json are all derived from that table.
-/// Adding a term = one new file (a class deriving from EnergyTerm plus its spec) and one line in
-/// energy_terms.cpp (docs/ARCHITECTURE.md, "Add an energy term").
+/// Adding a term = one new .cpp file (a class deriving from EnergyTerm, and its spec) and its line
+/// in energy_terms.cpp (docs/ARCHITECTURE.md, "Where to add … an energy term").
 #include <memory>
 #include <string_view>
 #include <vector>

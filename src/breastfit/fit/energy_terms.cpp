@@ -2,19 +2,20 @@
 
 #include <string>
 
-#include "breastfit/fit/blendshape_prior.h"
-#include "breastfit/fit/continuity_term.h"
-#include "breastfit/fit/data_term.h"
-#include "breastfit/fit/joint_prior.h"
-#include "breastfit/fit/landmark_term.h"
-#include "breastfit/fit/reverse_term.h"
-#include "breastfit/fit/scale_prior.h"
-#include "breastfit/fit/sliding_landmark_term.h"
-
 namespace breastfit::fit {
 
+// Each term is one file (<name>.cpp) defining its class and its spec.
+TermSpec data_term_spec();
+TermSpec reverse_term_spec();
+TermSpec landmark_term_spec();
+TermSpec sliding_landmark_term_spec();
+TermSpec scale_prior_spec();
+TermSpec blendshape_prior_spec();
+TermSpec joint_prior_spec();
+TermSpec continuity_term_spec();
+
 const std::vector<TermSpec>& energy_terms() {
-  // One line per term: adding a term to the registration is adding its spec here.
+  // One line per term (and its declaration above): adding a term to the registration is adding it here.
   static const std::vector<TermSpec> table = {
       data_term_spec(),
       reverse_term_spec(),

@@ -117,6 +117,10 @@ void EnergyWeights::set_lambda(std::string_view term, double value) {
   throw InvalidInput("'" + std::string(term) + "' is not an energy term (expected one of: " + energy_term_names() + ")");
 }
 
+bool FitOptions::uses_reverse_term() const {
+  return weights.lambda("reverse") > 0 && correspondences.reverse_samples > 0;
+}
+
 std::vector<const StageOptions*> FitOptions::stages() const { return {&landmark_pose, &rigid, &pose, &shape, &refine}; }
 std::vector<StageOptions*> FitOptions::stages() { return {&landmark_pose, &rigid, &pose, &shape, &refine}; }
 

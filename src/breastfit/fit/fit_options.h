@@ -130,6 +130,8 @@ struct FitOptions {
   double max_surface_mae_mm = 8.0;   ///< a final kept-correspondence MAE above this = not usable
   double min_kept_fraction = 0.25;   ///< fewer kept correspondences than this share = not usable
 
+  /// Whether the reverse term is on (λR > 0 and scan samples to use).
+  bool uses_reverse_term() const;
   /// The stages in the order they run (landmark_pose, rigid, pose, shape, refine).
   std::vector<const StageOptions*> stages() const;
   std::vector<StageOptions*> stages();

@@ -1,9 +1,20 @@
-#include "breastfit/fit/joint_prior.h"
+// Joint regulariser (paper eq. 7): each bone's rotation relative to its parent (the root's
+// relative to the global similarity), and the root bone's translation over τ:
+//   E_J = 1/λJ · [ Σ_j ‖log(R_parent(j)ᵀ R_j)‖² + ‖t_root / τ‖² ]
+// τ = EnergyWeights::joint_translation_scale_mm. Child translations are tied to their parent by
+// the continuity term instead (continuity_term.cpp).
+#include "breastfit/fit/energy_term.h"
 
 #include "breastfit/core/so3.h"
 #include "breastfit/fit/fit_options.h"
 
 namespace breastfit::fit {
+namespace {
+
+class JointPrior final : public EnergyTerm {
+ public:
+  double evaluate(const TermContext& ctx, double weight, NormalEquations* eq) const override;
+};
 namespace {
 
 // The three rows of a vector residual r whose Jacobian is a sum of dense 3×3 blocks, each on
@@ -52,6 +63,8 @@ double JointPrior::evaluate(const TermContext& ctx, double weight, NormalEquatio
   }
   return cost;
 }
+
+}  // namespace
 
 TermSpec joint_prior_spec() {
   return {"joints", "λJ", 1.0, "rad², (mm/τ)²", "joint regulariser E_J", false,

@@ -33,11 +33,23 @@ double LandmarkTermBase::evaluate(const TermContext& ctx, double weight, NormalE
   return cost;
 }
 
+namespace {
+
+class LandmarkTerm final : public LandmarkTermBase {
+ public:
+  void update(const TermContext& ctx) override { update_factors(ctx); }
+
+ protected:
+  std::optional<SurfacePoint> model_point(const TermContext& ctx, size_t i) const override;
+};
+
 std::optional<SurfacePoint> LandmarkTerm::model_point(const TermContext& ctx, size_t i) const {
   const auto& t = ctx.landmarks[i];
   if (sliding_landmark_region(t.name)) return std::nullopt;  // the sliding-landmark term's
   return ctx.ev.model().landmarks[t.model_landmark].point;
 }
+
+}  // namespace
 
 TermSpec landmark_term_spec() {
   return {"landmarks", "λL", 50.0, "mm²", "landmark term: squared distance per material landmark", false,

@@ -1,10 +1,10 @@
 #pragma once
-/// \file The landmark terms (paper eq. 9): squared distances between the model's landmark points
-/// and the landmarks placed on the scan,
+/// \file What the two landmark terms (paper eq. 9) share: squared distances between the model's
+/// landmark points and the landmarks placed on the scan,
 ///   E_L = 1/λL · Σ_l w_l r_l ‖X_l(θ) − ℓ_l‖²
 /// (w_l: landmark_weight; r_l: the robust factor of landmark_check.h in the stages that ask for it).
-/// LandmarkTerm covers the material landmarks (X_l = the template's stored surface point); the
-/// lowest breast points are not material points: sliding_landmark_term.h.
+/// landmark_term.cpp: the material landmarks (X_l = the template's stored surface point);
+/// sliding_landmark_term.cpp: the lowest breast points, which are not material points.
 #include <optional>
 #include <vector>
 
@@ -26,15 +26,5 @@ class LandmarkTermBase : public EnergyTerm {
  private:
   std::vector<double> factors_;  // per ctx.landmarks entry
 };
-
-class LandmarkTerm final : public LandmarkTermBase {
- public:
-  void update(const TermContext& ctx) override { update_factors(ctx); }
-
- protected:
-  std::optional<SurfacePoint> model_point(const TermContext& ctx, size_t i) const override;
-};
-
-TermSpec landmark_term_spec();
 
 }  // namespace breastfit::fit

@@ -153,9 +153,8 @@ FitResult register_template(const model::RiggedModel& model, ScanTarget& scan, s
 
   // Final state: every vertex at the final threshold.
   phase.reset();
-  const bool use_reverse = options.weights.lambda("reverse") > 0 && options.correspondences.reverse_samples > 0;
   problem.evaluator().set_params(params);
-  problem.update_correspondences(options.correspondences.max_distance_end_mm, 1, use_reverse);
+  problem.update_correspondences(options.correspondences.max_distance_end_mm, 1, options.uses_reverse_term());
   problem.update_terms(options.refine.robust_landmarks);
   summary.final_energy = problem.evaluate(nullptr);
   summary.final_correspondences = problem.stats();

@@ -1,6 +1,17 @@
-#include "breastfit/fit/reverse_term.h"
+// The reverse data term (beyond the paper): scan sample → closest point on the posed model,
+// point-to-plane, averaged over the kept samples. It pulls the model into parts of the scan that
+// no model vertex claims (e.g. a breast larger than the template's):
+//   E_R = 1/λR · 1/|S| Σ_{p∈S} w_p (n_p·(X_p(θ) − s_p))²
+// Used in the stages that move blendshapes; λR ≤ 0 disables it.
+#include "breastfit/fit/energy_term.h"
 
 namespace breastfit::fit {
+namespace {
+
+class ReverseTerm final : public EnergyTerm {
+ public:
+  double evaluate(const TermContext& ctx, double weight, NormalEquations* eq) const override;
+};
 
 double ReverseTerm::evaluate(const TermContext& ctx, double weight, NormalEquations* eq) const {
   if (ctx.reverse.empty()) return 0.0;
@@ -28,6 +39,8 @@ double ReverseTerm::evaluate(const TermContext& ctx, double weight, NormalEquati
   }
   return cost;
 }
+
+}  // namespace
 
 TermSpec reverse_term_spec() {
   return {"reverse", "λR", 2.0, "mm²", "reverse data term: scan → model, mean squared point-to-plane distance",

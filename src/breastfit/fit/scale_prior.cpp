@@ -1,6 +1,14 @@
-#include "breastfit/fit/scale_prior.h"
+// Bone scale regulariser (paper eq. 5), per axis weighted by the template's stiffness:
+//   E_S = 1/λS · Σ_j Σ_a k_{j,a} (s_{j,a} − 1)²     (k: Bone::scale_stiffness)
+#include "breastfit/fit/energy_term.h"
 
 namespace breastfit::fit {
+namespace {
+
+class ScalePrior final : public EnergyTerm {
+ public:
+  double evaluate(const TermContext& ctx, double weight, NormalEquations* eq) const override;
+};
 
 double ScalePrior::evaluate(const TermContext& ctx, double weight, NormalEquations* eq) const {
   const auto& model = ctx.ev.model();
@@ -18,6 +26,8 @@ double ScalePrior::evaluate(const TermContext& ctx, double weight, NormalEquatio
     }
   return cost;
 }
+
+}  // namespace
 
 TermSpec scale_prior_spec() {
   return {"scale", "λS", 0.5, "no unit", "bone scale regulariser E_S", false,

@@ -42,7 +42,8 @@ class StageRun {
       : problem_(problem), stage_(stage), schedule_(schedule), data_stage_(std::max(data_stage, 0)),
         options_(problem.options().solver), strategy_(options_),
         active_(active_parameters(problem.evaluator().layout(), stage, problem.options().max_blendshapes)),
-        eq_(problem.evaluator().layout().num_params()) {
+        eq_(problem.evaluator().layout().num_params()),
+        use_reverse_(problem.options().uses_reverse_term() && stage.blendshapes) {
     eq_.set_active(active_);
   }
 
@@ -76,10 +77,8 @@ class StageRun {
 
  private:
   void relinearize(double max_dist) {
-    const bool use_reverse = problem_.options().weights.lambda("reverse") > 0 &&
-                             problem_.options().correspondences.reverse_samples > 0;
     if (stage_.use_data)
-      problem_.update_correspondences(max_dist, stage_.vertex_stride, use_reverse && stage_.blendshapes);
+      problem_.update_correspondences(max_dist, stage_.vertex_stride, use_reverse_);
     else
       problem_.clear_correspondences();
     problem_.update_terms(stage_.robust_landmarks);
@@ -123,6 +122,7 @@ class StageRun {
   std::vector<int> active_;
   NormalEquations eq_;
   Eigen::MatrixXd H_;
+  bool use_reverse_;  // the reverse term is used in the stages that move blendshapes
   bool rebuild_next_ = true;
 };
 
