@@ -23,6 +23,8 @@ packages=(
   libeigen3-dev nlohmann-json3-dev libcli11-dev libtinygltf-dev libstb-dev
   libgtest-dev libgmock-dev libbenchmark-dev libnanoflann-dev
   python3-numpy python3-scipy python3-matplotlib
+  libcpp-httplib-dev chromium
+  pybind11-dev python3-dev python3-pytest python3-distributed
 )
 
 missing=()
