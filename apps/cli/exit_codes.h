@@ -7,4 +7,5 @@ inline constexpr int kExitUsage = 2;         ///< bad command line
 inline constexpr int kExitInvalidInput = 3;  ///< input data rejected (bad values, wrong landmarks, ...)
 inline constexpr int kExitIoError = 4;       ///< a file could not be read or written
 inline constexpr int kExitNotConverged = 5;  ///< the registration did not converge to a usable fit
+inline constexpr int kExitCasesFailed = 6;   ///< batch: a case failed or was not usable (the others were done)
 }  // namespace breastfit::cli

@@ -1,0 +1,67 @@
+#include "breastfit/cohort/batch.h"
+
+#include <atomic>
+#include <fstream>
+#include <mutex>
+#include <thread>
+
+#include "breastfit/cohort/cohort_csv.h"
+#include "breastfit/cohort/cohort_html.h"
+#include "breastfit/core/errors.h"
+#include "breastfit/model/template_library.h"
+
+namespace breastfit::cohort {
+namespace fs = std::filesystem;
+
+std::vector<CaseRecord> run_batch(const std::vector<CohortCase>& cases, const fs::path& out_root,
+                                  const BatchOptions& options, const BatchProgress& progress) {
+  if (options.jobs < 1) throw InvalidInput("jobs must be at least 1 (got " + std::to_string(options.jobs) + ")");
+  std::error_code ec;
+  fs::create_directories(out_root, ec);
+  if (ec) throw IoError(out_root.string(), "cannot create the output directory: " + ec.message());
+  CaseRunOptions run = options.run;
+  if (!run.model) run.model = std::make_shared<const model::RiggedModel>(model::load_default_template());
+
+  std::vector<CaseRecord> records(cases.size());
+  std::atomic<size_t> next{0};
+  std::mutex progress_mutex;
+  int done = 0;
+  const auto worker = [&] {
+    for (size_t i = next++; i < cases.size(); i = next++) {
+      records[i] = run_case(cases[i], out_root, run);
+      const std::lock_guard lock(progress_mutex);
+      ++done;
+      if (progress) progress(done, static_cast<int>(cases.size()), records[i]);
+    }
+  };
+  const size_t threads = std::min<size_t>(static_cast<size_t>(options.jobs), std::max<size_t>(cases.size(), 1));
+  std::vector<std::thread> pool;
+  for (size_t t = 1; t < threads; ++t) pool.emplace_back(worker);
+  worker();
+  for (auto& t : pool) t.join();
+  return records;
+}
+
+namespace {
+
+void write_replacing(const fs::path& path, const std::string& text) {
+  const fs::path tmp = path.parent_path() / ("." + path.filename().string() + ".tmp");
+  {
+    std::ofstream f(tmp, std::ios::binary);
+    if (!f) throw IoError(tmp.string(), "cannot open for writing");
+    f << text;
+    if (!f) throw IoError(tmp.string(), "write failed");
+  }
+  std::error_code ec;
+  fs::rename(tmp, path, ec);
+  if (ec) throw IoError(path.string(), "cannot move into place: " + ec.message());
+}
+
+}  // namespace
+
+void write_cohort_summary(const fs::path& out_root, const std::vector<CaseRecord>& records) {
+  write_replacing(out_root / "cohort.csv", format_cohort_csv(records));
+  write_replacing(out_root / "cohort.html", cohort_html(records));
+}
+
+}  // namespace breastfit::cohort
