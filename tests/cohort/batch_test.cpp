@@ -9,6 +9,7 @@
 #include "breastfit/cohort/cohort_csv.h"
 #include "breastfit/core/errors.h"
 #include "cohort_test_cases.h"
+#include "support/test_paths.h"
 
 namespace breastfit::cohort {
 namespace {

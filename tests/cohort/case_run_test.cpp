@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "cohort_test_cases.h"
+#include "support/test_paths.h"
 
 namespace breastfit::cohort {
 namespace {
