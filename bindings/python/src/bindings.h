@@ -39,6 +39,10 @@ py::array_t<double> to_array(const Points& p);
 py::array_t<double> to_array(const Vec3& v);
 py::array_t<std::int64_t> to_array(const Triangles& f);
 
+/// Curves from a dict name → Curve or (n, 3) array (an open curve), named by the keys.
+/// \throws InvalidInput naming `what` and the curve for a bad array
+std::vector<Curve> curves_from_dict(const py::handle& dict, const std::string& what);
+
 /// A mesh from a Mesh object, a (vertices, faces) pair or a path (read from the file).
 /// `name` receives the path for a file (messages, reports), else "<what>".
 TriangleMesh mesh_from_python(const py::handle& value, const std::string& what, std::string* name = nullptr);

@@ -97,6 +97,17 @@ std::optional<std::string> path_from_python(const py::handle& value) {
   return std::nullopt;
 }
 
+std::vector<Curve> curves_from_dict(const py::handle& dict, const std::string& what) {
+  std::vector<Curve> out;
+  for (const auto& [k, v] : dict.cast<py::dict>()) {
+    const std::string name = py::str(k);
+    Curve c = py::isinstance<Curve>(v) ? v.cast<Curve>() : Curve{name, false, points_from_array(v, what + " '" + name + "'")};
+    c.name = name;
+    out.push_back(std::move(c));
+  }
+  return out;
+}
+
 TriangleMesh mesh_from_python(const py::handle& value, const std::string& what, std::string* name) {
   if (py::isinstance<TriangleMesh>(value)) {
     if (name) *name = "<" + what + ">";

@@ -70,14 +70,7 @@ void bind_mesh_io(py::module_& m) {
                  const std::string name = py::str(k);
                  mk.points.push_back({name, vec3_from_array(v, "point '" + name + "'")});
                }
-             if (!curves.is_none())
-               for (const auto& [k, v] : curves.cast<py::dict>()) {
-                 const std::string name = py::str(k);
-                 Curve c = py::isinstance<Curve>(v) ? v.cast<Curve>()
-                                                    : Curve{name, false, points_from_array(v, "curve '" + name + "'")};
-                 c.name = name;
-                 mk.curves.push_back(std::move(c));
-               }
+             if (!curves.is_none()) mk.curves = curves_from_dict(curves, "curve");
              return mk;
            }),
            py::arg("points") = py::none(), py::arg("curves") = py::none(),

@@ -21,12 +21,7 @@ Markups markups_mm_from_python(const py::handle& value, double to_mm, const std:
   if (py::isinstance<Markups>(value)) {
     mk = value.cast<Markups>();
   } else if (py::isinstance<py::dict>(value)) {
-    for (const auto& [k, v] : value.cast<py::dict>()) {
-      const std::string name = py::str(k);
-      Curve c = py::isinstance<Curve>(v) ? v.cast<Curve>() : Curve{name, false, points_from_array(v, what + " '" + name + "'")};
-      c.name = name;
-      mk.curves.push_back(std::move(c));
-    }
+    mk.curves = curves_from_dict(value, what);
   } else {
     throw InvalidInput(what + ": expected Markups, a dict name → (n, 3) array or Curve, or a markups file path");
   }

@@ -53,7 +53,7 @@ std::vector<std::pair<std::string, double>> values_of(const std::vector<CaseReco
 
 /// A histogram of `values` as an inline SVG (bars, counts above them, the range below).
 std::string histogram_svg(const std::string& title, const std::vector<double>& values) {
-  constexpr int kW = 360, kH = 200, kLeft = 30, kBottom = 36, kTop = 28, kBins = 12;
+  constexpr int kW = 360, kH = 210, kLeft = 30, kBottom = 36, kTop = 38, kBins = 12;
   std::string svg = "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + std::to_string(kW) + "\" height=\"" +
                     std::to_string(kH) + "\" role=\"img\"><title>" + html_escape(title) + "</title>";
   svg += "<text x=\"" + std::to_string(kW / 2) + "\" y=\"16\" text-anchor=\"middle\" class=\"t\">" + html_escape(title) +
