@@ -10,7 +10,17 @@ The C++ library through pybind11, numpy arrays in and out (docs/PYTHON.md):
 Bad input raises ValueError, a file problem OSError. `breastfit.cohort` runs a cohort on a Dask
 cluster. Automatic landmarks (`landmarks(scan)`) are not part of this module yet.
 """
-from ._breastfit import (  # noqa: F401  (the public API)
+import os as _os
+
+from . import _breastfit
+
+# Installed (cmake --install): <prefix>/lib/pythonX.Y/site-packages/breastfit → <prefix>/share/breastfit.
+_installed_template = _os.path.normpath(_os.path.join(_os.path.dirname(__file__), "..", "..", "..", "..", "share",
+                                                      "breastfit", "default_torso.glb"))
+if _os.path.isfile(_installed_template):
+    _breastfit._set_installed_template(_installed_template)
+
+from ._breastfit import (  # noqa: E402,F401  (the public API)
     Curve,
     Drawing,
     Fit,

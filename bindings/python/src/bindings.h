@@ -57,7 +57,12 @@ std::optional<mesh::Units> units_from_python(const py::handle& value);
 /// A str or os.PathLike as a path string, nullopt for anything else.
 std::optional<std::string> path_from_python(const py::handle& value);
 
-/// The template a call uses: `value` (a Template) or the shipped default when None.
+/// Where an installed module finds the shipped template (<prefix>/share/breastfit/default_torso.glb,
+/// set by breastfit/__init__.py when that file exists): used for the default template unless
+/// $BREASTFIT_TEMPLATE is set; otherwise model::default_template_path()'s search applies.
+void set_installed_template(const std::filesystem::path& path);
+
+/// The template a call uses: `value` (a Template) or the shipped default when None (loaded once).
 std::shared_ptr<const model::RiggedModel> template_from_python(const py::handle& value);
 
 /// Maps the library's exceptions to Python's (the only place that does).

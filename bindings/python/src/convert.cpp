@@ -1,9 +1,11 @@
 // numpy ↔ Eigen with validation, Python ↔ JSON, units and paths (bindings.h).
 #include <cmath>
+#include <cstdlib>
 
 #include "bindings.h"
 #include "breastfit/core/errors.h"
 #include "breastfit/io/io.h"
+#include "breastfit/model/gltf_io.h"
 #include "breastfit/model/template_library.h"
 
 namespace breastfit::python {
@@ -155,6 +157,15 @@ std::optional<mesh::Units> units_from_python(const py::handle& value) {
   throw InvalidInput("units: expected \"auto\", \"mm\" or \"m\", got \"" + u + "\"");
 }
 
+namespace {
+std::filesystem::path& installed_template() {
+  static std::filesystem::path path;
+  return path;
+}
+}  // namespace
+
+void set_installed_template(const std::filesystem::path& path) { installed_template() = path; }
+
 std::shared_ptr<const model::RiggedModel> template_from_python(const py::handle& value) {
   if (value.is_none()) {
     // The shipped default, loaded once per process (a template is immutable and shared).
@@ -163,7 +174,10 @@ std::shared_ptr<const model::RiggedModel> template_from_python(const py::handle&
       std::shared_ptr<const model::RiggedModel> loaded;
       {
         py::gil_scoped_release release;
-        loaded = std::make_shared<const model::RiggedModel>(model::load_default_template());
+        const char* env = std::getenv("BREASTFIT_TEMPLATE");
+        const bool installed = (!env || !*env) && !installed_template().empty();
+        loaded = std::make_shared<const model::RiggedModel>(installed ? model::load_gltf(installed_template())
+                                                                      : model::load_default_template());
       }
       if (!default_model) default_model = std::move(loaded);  // another thread may have been first
     }

@@ -97,6 +97,9 @@ void bind_template(py::module_& m) {
                " blendshapes>";
       });
 
+  m.def("_set_installed_template", &set_installed_template, py::arg("path"),
+        "Internal: the installed package's default template file (see breastfit/__init__.py).");
+
   m.def(
       "pose",
       [](const Template& t, const py::handle& params) {
