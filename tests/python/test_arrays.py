@@ -124,3 +124,21 @@ def test_template_by_name_and_pose():
         breastfit.pose(t, {"nonsense": 1.0})
     with pytest.raises(ValueError):
         breastfit.pose(t, {f"shape.{shape}": b["hi"] + 10})
+
+
+def test_type_stubs_match_the_module():
+    """__init__.pyi declares exactly the public API, and every member it lists exists."""
+    import ast
+    import pathlib
+
+    stub = ast.parse((pathlib.Path(breastfit.__file__).parent / "__init__.pyi").read_text())
+    declared = {n.name: n for n in stub.body if isinstance(n, (ast.ClassDef, ast.FunctionDef))}
+    assert set(declared) == set(breastfit.__all__)
+    for name, node in declared.items():
+        if isinstance(node, ast.ClassDef):
+            cls = getattr(breastfit, name)
+            for member in node.body:
+                member_name = getattr(member, "name", None) or getattr(getattr(member, "target", None), "id", None)
+                if member_name and member_name != "__init__":
+                    assert hasattr(cls, member_name), f"{name}.{member_name}"
+        assert getattr(breastfit, name).__doc__, f"{name} has no docstring"
