@@ -80,11 +80,12 @@ class VtpReader {
     return nullptr;
   }
 
-  /// The DataArray child of `parent` whose Name is `array_name` (or the first when empty).
+  /// The DataArray (or, in field data, Array) child of `parent` whose Name is `array_name` (or
+  /// the first when empty).
   const XmlElement* data_array(const XmlElement& parent, std::string_view array_name) const {
     for (std::size_t c : parent.children) {
       const XmlElement& e = doc_.elements[c];
-      if (e.name != "DataArray") continue;
+      if (e.name != "DataArray" && e.name != "Array") continue;
       const std::string* n = e.attribute("Name");
       if (array_name.empty() || (n != nullptr && *n == array_name)) return &e;
     }
