@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <map>
+#include <utility>
 #include <set>
 #include <sstream>
 #include <string>
@@ -32,36 +33,49 @@ std::string trim(const std::string& s) {
   return b == std::string::npos ? "" : s.substr(b, e - b + 1);
 }
 
+/// Splits an entry line (without its indentation) into its head (names and type) and the
+/// description after the first run of two or more spaces (empty when on the next line).
+std::pair<std::string, std::string> split_entry(const std::string& body) {
+  const auto gap = body.find("  ");
+  return {body.substr(0, gap), gap == std::string::npos ? "" : trim(body.substr(gap))};
+}
+
 Help parse_help(const std::string& text) {
   Help h;
   std::istringstream in(text);
   std::string line, section;
+  bool group_description = false;  // the line after "[Option Group: ...]" describes the group
   while (std::getline(in, line)) {
-    if (!line.empty() && line[0] != ' ' && line.back() == ':') {
-      section = line.substr(0, line.size() - 1);
+    const std::string t = trim(line);
+    if (t.empty()) continue;
+    if (line[0] != ' ') {
+      if (t.rfind("[Option Group:", 0) == 0) {
+        section = "Options";
+        group_description = true;
+      } else if (t.back() == ':') {
+        section = t.substr(0, t.size() - 1);
+      }
       continue;
     }
-    const bool entry = line.size() > 2 && line.compare(0, 2, "  ") == 0 && line[2] != ' ';
-    if (entry) {
-      // Names and type end at the first run of 2+ spaces; the description follows (or is on the
-      // next, deeper-indented lines when the names are long).
-      const std::string body = line.substr(2);
-      const auto gap = body.find("  ");
-      const std::string head = body.substr(0, gap);
-      const std::string description = gap == std::string::npos ? "" : trim(body.substr(gap));
-      if (section == "Subcommands") {
-        h.subcommands.push_back(head.substr(0, head.find(' ')));
-      } else if (section == "Options" || section == "Positionals") {
-        HelpOption o;
-        std::string names = head.substr(0, head.find(' '));
-        std::stringstream ns(names);
-        for (std::string n; std::getline(ns, n, ',');) o.names.push_back(n);
-        o.description = description;
-        h.options.push_back(o);
-      }
-    } else if (line.size() > 2 && line.compare(0, 2, "  ") == 0 && !h.options.empty() &&
-               (section == "Options" || section == "Positionals") && h.options.back().description.empty()) {
-      h.options.back().description = trim(line);
+    if (t == "Options:") {
+      group_description = false;
+      continue;
+    }
+    const std::size_t indent = line.find_first_not_of(' ');
+    if (section == "Subcommands" && indent == 2) {
+      h.subcommands.push_back(t.substr(0, t.find(' ')));
+    } else if ((section == "Options" && t[0] == '-') || (section == "Positionals" && indent == 2)) {
+      const auto [head, description] = split_entry(t);
+      HelpOption o;
+      std::stringstream ns(head.substr(0, head.find(' ')));
+      for (std::string n; std::getline(ns, n, ',');) o.names.push_back(n);
+      o.description = description;
+      h.options.push_back(o);
+      group_description = false;
+    } else if (group_description) {
+      group_description = false;  // the group's own description
+    } else if (!h.options.empty() && h.options.back().description.empty()) {
+      h.options.back().description = t;  // a long head puts the description on the next line
     }
   }
   return h;
@@ -85,6 +99,10 @@ TEST(Main, EveryHelpExitsZeroAndDescribesEveryOption) {
   if (test::cli_path().empty()) GTEST_SKIP() << "CLI not built";
   const auto helps = walk("");
   EXPECT_GE(helps.size(), 11u);  // the top level and at least ten subcommands
+  ASSERT_TRUE(helps.count("register"));
+  bool grouped = false;  // options inside "[Option Group: ...]" are parsed too
+  for (const HelpOption& o : helps.at("register").options) grouped = grouped || o.names.back() == "--lambda-data";
+  EXPECT_TRUE(grouped);
   for (const auto& [path, help] : helps) {
     for (const HelpOption& o : help.options) {
       EXPECT_FALSE(o.description.empty()) << "'" << path << "': option " << o.names.front() << " has no description";
