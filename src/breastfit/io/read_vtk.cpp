@@ -191,6 +191,8 @@ class LegacyVtkReader {
         ok = detail::parse_int64(token, v);
       } else {
         ok = detail::parse_double(token, v);
+        // A float array's text is a float value: round as the binary encoding would store it.
+        if (ok && type.kind == VtkScalar::Kind::Float && type.bytes == 4) v = static_cast<float>(v);
       }
       if (!ok) {
         fail(std::string(section) + (integers ? ": bad integer " : ": bad value ") + detail::quoted(token) +

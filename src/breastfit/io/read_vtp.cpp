@@ -235,7 +235,8 @@ class VtpReader {
       out.reserve(static_cast<std::size_t>(std::min<std::uint64_t>(count, text.size() / 2 + 1)));
       for (std::string_view t = next_token(text); !t.empty(); t = next_token(text)) {
         double v = 0;
-        if (!detail::parse_double(t, v)) fail(section + ": bad value " + detail::quoted(t) + "");
+        if (!detail::parse_double(t, v)) fail(section + ": bad value " + detail::quoted(t));
+        if (type.kind == VtkScalar::Kind::Float && type.bytes == 4) v = static_cast<float>(v);  // as stored
         if (out.size() == count) fail(section + ": more than the " + std::to_string(count) + " values expected");
         out.push_back(v);
       }
