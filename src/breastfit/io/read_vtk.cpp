@@ -148,7 +148,7 @@ class LegacyVtkReader {
     if (const auto s = detail::legacy_vtk_scalar(type_name)) return {ArrayType::Kind::Scalar, *s};
     if (type_name == "bit") return {ArrayType::Kind::Bit, {}};
     if (type_name == "string" || type_name == "utf8_string") return {ArrayType::Kind::String, {}};
-    fail(std::string(section) + ": unknown data type " + detail::quoted(type_name) + "");
+    fail(std::string(section) + ": unknown data type " + detail::quoted(type_name));
   }
 
   /// Fails unless `count` values of `bytes_each` bytes (binary) or tokens (ascii) can follow.
@@ -241,7 +241,7 @@ class LegacyVtkReader {
   std::uint64_t count_token(std::string_view token, std::string_view section) const {
     std::int64_t v = 0;
     if (!detail::parse_int64(token, v) || v < 0) {
-      fail(std::string(section) + ": bad count " + detail::quoted(token) + "");
+      fail(std::string(section) + ": bad count " + detail::quoted(token));
     }
     if (v > (std::int64_t{1} << 48)) fail(std::string(section) + ": absurd count " + std::string(token));
     return static_cast<std::uint64_t>(v);
@@ -323,7 +323,7 @@ class LegacyVtkReader {
   VtkScalar integer_type(std::string_view type_name, const std::string& section) const {
     const ArrayType type = array_type(type_name, section);
     if (type.kind != ArrayType::Kind::Scalar || type.scalar.kind == VtkScalar::Kind::Float) {
-      fail(section + ": point indices must have an integer type, not " + detail::quoted(type_name) + "");
+      fail(section + ": point indices must have an integer type, not " + detail::quoted(type_name));
     }
     return type.scalar;
   }
@@ -464,7 +464,7 @@ class LegacyVtkReader {
       } else if (data != Data::None) {
         read_attribute(t, data_count, data == Data::Points);
       } else {
-        fail("unexpected keyword " + detail::quoted(t[0]) + "");
+        fail("unexpected keyword " + detail::quoted(t[0]));
       }
     }
   }

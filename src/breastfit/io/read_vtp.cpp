@@ -102,7 +102,7 @@ class VtpReader {
     if (v == nullptr) return fallback;
     std::int64_t n = 0;
     if (!detail::parse_int64(*v, n) || n < 0 || n > (std::int64_t{1} << 40)) {
-      fail("<" + e.name + "> has a bad " + std::string(key) + " " + detail::quoted(*v) + "");
+      fail("<" + e.name + "> has a bad " + std::string(key) + " " + detail::quoted(*v));
     }
     return static_cast<std::uint64_t>(n);
   }
@@ -116,10 +116,10 @@ class VtpReader {
                                            : ""));
     }
     const std::string order = attr_or(root, "byte_order", "LittleEndian");
-    if (order != "LittleEndian" && order != "BigEndian") fail("unknown byte_order " + detail::quoted(order) + "");
+    if (order != "LittleEndian" && order != "BigEndian") fail("unknown byte_order " + detail::quoted(order));
     big_endian_ = order == "BigEndian";
     const std::string header = attr_or(root, "header_type", "UInt32");
-    if (header != "UInt32" && header != "UInt64") fail("unknown header_type " + detail::quoted(header) + "");
+    if (header != "UInt32" && header != "UInt64") fail("unknown header_type " + detail::quoted(header));
     header_bytes_ = header == "UInt64" ? 8 : 4;
     const std::string compressor = attr_or(root, "compressor", "");
     if (compressor == "vtkZLibDataCompressor") {
@@ -133,7 +133,7 @@ class VtpReader {
   void locate_appended() {
     const XmlElement& appended = doc_.elements.back();
     const std::string encoding = attr_or(appended, "encoding", "raw");
-    if (encoding != "raw" && encoding != "base64") fail("unknown AppendedData encoding " + detail::quoted(encoding) + "");
+    if (encoding != "raw" && encoding != "base64") fail("unknown AppendedData encoding " + detail::quoted(encoding));
     appended_base64_ = encoding == "base64";
     const std::size_t underscore = bytes_.find('_', doc_.appended_at);
     if (underscore == std::string_view::npos) fail("<AppendedData> has no '_' marking its start");
@@ -145,7 +145,7 @@ class VtpReader {
   VtkScalar scalar_of(const XmlElement& a, const std::string& section) const {
     const std::string type = attr_or(a, "type", "");
     const auto s = detail::xml_vtk_scalar(type);
-    if (!s) fail(section + ": unsupported DataArray type " + detail::quoted(type) + "");
+    if (!s) fail(section + ": unsupported DataArray type " + detail::quoted(type));
     return *s;
   }
 
@@ -214,7 +214,7 @@ class VtpReader {
       detail::Base64Reader source(a.text);
       return binary_bytes(source, expected, section);
     }
-    if (format != "appended") fail(section + ": unknown DataArray format " + detail::quoted(format) + "");
+    if (format != "appended") fail(section + ": unknown DataArray format " + detail::quoted(format));
     if (appended_.data() == nullptr) fail(section + ": an appended array but no <AppendedData>");
     const std::uint64_t offset = count_attr(a, "offset", 0);
     if (offset > appended_.size()) fail(section + ": offset " + std::to_string(offset) + " is past the appended data");
@@ -262,7 +262,7 @@ class VtpReader {
       std::string_view text = a.text;
       for (std::string_view t = next_token(text); !t.empty(); t = next_token(text)) {
         std::int64_t v = 0;
-        if (!detail::parse_int64(t, v)) fail(section + ": bad integer " + detail::quoted(t) + "");
+        if (!detail::parse_int64(t, v)) fail(section + ": bad integer " + detail::quoted(t));
         out.push_back(v);
       }
       if (count && out.size() != *count) {
