@@ -347,7 +347,7 @@ class LegacyVtkReader {
       const std::vector<std::string_view> f = tokens_of(*line);
       if (f.size() == 1 && f[0] == "NULL_ARRAY") continue;
       expect_tokens(f, 4, "name components tuples type");
-      const std::string section = "FIELD array " + detail::quoted(f[0]) + "";
+      const std::string section = "FIELD array " + detail::quoted(f[0]);
       const std::uint64_t components = count_token(f[1], section);
       const std::uint64_t tuples = count_token(f[2], section);
       rewind_after(f, 4);
