@@ -25,6 +25,7 @@ packages=(
   python3-numpy python3-scipy python3-matplotlib
   libcpp-httplib-dev chromium
   pybind11-dev python3-dev python3-pytest python3-distributed
+  zlib1g-dev libssl-dev
 )
 
 missing=()

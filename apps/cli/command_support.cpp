@@ -77,9 +77,22 @@ void check_output_file(const std::string& path, const std::vector<std::string>& 
   if (!force) throw IoError(path, "already exists (use " + force_flag + " to replace it)");
 }
 
-model::RiggedModel load_template(const std::string& path) {
+namespace {
+std::vector<std::string>& command_line_storage() {
+  static std::vector<std::string> args;
+  return args;
+}
+}  // namespace
+
+void set_command_line(int argc, const char* const* argv) {
+  command_line_storage().assign(argv, argv + argc);
+}
+
+const std::vector<std::string>& command_line() { return command_line_storage(); }
+
+model::RiggedModel load_template(const std::string& path, const std::string& mesh) {
   const std::filesystem::path p = path.empty() ? model::default_template_path() : std::filesystem::path(path);
-  return model::load_gltf(p);
+  return model::load_gltf(p, mesh);
 }
 
 fit::IterationCallback progress_printer(bool quiet) {

@@ -37,10 +37,15 @@ std::optional<mesh::Units> parse_units_flag(const std::string& text);
 /// or when it exists and `force` is false. Nothing the user gave is overwritten.
 void check_output_file(const std::string& path, const std::vector<std::string>& inputs, bool force,
                        const std::string& force_flag = "--force");
-/// The template at `path`, or the shipped default when empty. \throws IoError / InvalidInput.
-model::RiggedModel load_template(const std::string& path);
+/// The template at `path`, or the shipped default when empty; `mesh` picks one of several skinned
+/// meshes (model::load_gltf). \throws IoError / InvalidInput.
+model::RiggedModel load_template(const std::string& path, const std::string& mesh = "");
 /// One line per iteration on stderr unless quiet.
 fit::IterationCallback progress_printer(bool quiet);
+/// Remembers the process's command line (main does this first) for the reports' provenance.
+void set_command_line(int argc, const char* const* argv);
+/// The command line set_command_line remembered (empty before).
+const std::vector<std::string>& command_line();
 /// The human summary of a registration (`report_html`: report.html was written too).
 void print_register_summary(std::ostream& os, const pipeline::RegisterResult& r, const std::string& out_dir,
                             bool report_html = true);

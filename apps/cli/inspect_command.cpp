@@ -215,7 +215,7 @@ void inspect_points(const InspectArgs& a, FileKind kind, std::optional<mesh::Uni
 void register_inspect(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<InspectArgs>();
   auto* sub = app.add_subcommand(
-      "inspect", "Describe a mesh / point cloud (.ply .obj .stl) or a landmark / markups file (.mrk.json .json .csv .fcsv)");
+      "inspect", "Describe a mesh / point cloud (.ply .obj .stl .vtk .vtp) or a landmark / markups file (.mrk.json .json .csv .fcsv)");
   sub->add_option("file", args->file, "file to inspect")->required();
   sub->add_flag("--json", args->json, "print machine-readable JSON instead of text");
   sub->add_option("--units", args->units, "units of the file: auto (guess from the extent), mm or m")

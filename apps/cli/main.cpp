@@ -2,11 +2,13 @@
 #include <iostream>
 
 #include "breastfit/core/errors.h"
+#include "command_support.h"
 #include "commands.h"
 #include "exit_codes.h"
 
 int main(int argc, char** argv) {
   using namespace breastfit::cli;
+  set_command_line(argc, argv);
   CLI::App app{"breastfit: rigged-template registration of breast scans and transfer of surgical drawings"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "breastfit 0.1.0");

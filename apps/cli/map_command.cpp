@@ -38,7 +38,7 @@ void register_map(CLI::App& app, int& exit_code) {
   sub->add_option("--to", args->to, "output directory of `breastfit register` for scan B")->required();
   sub->add_option("--out,-o", args->out, "mapped markups (.mrk.json, in scan B's frame and units)")->required();
   sub->add_option("--to-scan", args->to_scan,
-                  "scan B (.ply .obj .stl): project the mapped points onto it (default: onto fitted B)");
+                  "scan B (.ply .obj .stl .vtk .vtp): project the mapped points onto it (default: onto fitted B)");
   sub->add_option("--template,-t", args->template_path, "the template both fits used; default: the shipped torso");
   sub->add_option("--confidence", args->confidence,
                   "per-point confidence JSON (default: OUT with .mrk.json replaced by .confidence.json)");

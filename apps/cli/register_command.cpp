@@ -6,6 +6,7 @@
 #include "breastfit/io/landmarks_io.h"
 #include "breastfit/model/gltf_io.h"
 #include "breastfit/model/template_library.h"
+#include "breastfit/pipeline/provenance.h"
 #include "breastfit/pipeline/register_outputs.h"
 #include "breastfit/pipeline/register_scan.h"
 #include "command_support.h"
@@ -17,17 +18,19 @@ namespace breastfit::cli {
 
 void register_register(CLI::App& app, int& exit_code) {
   struct Args {
-    std::string scan, landmarks, template_path, units = "auto", config, out;
+    std::string scan, landmarks, template_path, template_mesh, units = "auto", config, out;
     bool force = false, quiet = false, no_landmarks = false, no_report_html = false;
     FitFlags fit;
   };
   auto args = std::make_shared<Args>();
   auto* sub = app.add_subcommand("register", "Register the rigged template to a scan and write the fitted model, "
                                              "its landmarks and drawings, parameters and a report");
-  sub->add_option("scan", args->scan, "scan mesh (.ply .obj .stl; a vertex-only PLY is a point cloud)")->required();
-  sub->add_option("--landmarks,-l", args->landmarks, "landmarks on the scan (.mrk.json, .json or .csv)");
+  sub->add_option("scan", args->scan, "scan mesh (.ply .obj .stl .vtk .vtp; a vertex-only file is a point cloud)")->required();
+  sub->add_option("--landmarks,-l", args->landmarks, "landmarks on the scan (.mrk.json, .json, .csv or .fcsv)");
   sub->add_flag("--no-landmarks", args->no_landmarks, "ignore landmarks: landmark-free initialisation and fit");
   sub->add_option("--template,-t", args->template_path, "rigged template (.glb/.gltf); default: the shipped torso");
+  sub->add_option("--mesh", args->template_mesh,
+                  "the template's skinned mesh to use when its file has several (node or mesh name)");
   sub->add_option("--units", args->units, "scan units: auto (from the extent), mm or m")
       ->check(CLI::IsMember({"auto", "mm", "m"}));
   sub->add_option("--config", args->config, "JSON file with fit options (see docs/REGISTRATION.md)");
@@ -51,10 +54,22 @@ void register_register(CLI::App& app, int& exit_code) {
     req.units = parse_units_flag(args->units);
     req.landmarks_name = args->landmarks;
     if (!args->landmarks.empty() && !args->no_landmarks) req.landmarks = read_landmarks_warning(args->landmarks);
-    req.model = std::make_shared<const model::RiggedModel>(load_template(args->template_path));
+    req.model = std::make_shared<const model::RiggedModel>(load_template(args->template_path, args->template_mesh));
     const model::RiggedModel& model = *req.model;
     req.options = load_fit_options(args->config, args->fit);
     if (args->no_landmarks) req.options.use_landmarks = false;
+
+    pipeline::Provenance provenance;
+    provenance.version = pipeline::breastfit_version();
+    provenance.started_utc = pipeline::utc_now_iso8601();
+    provenance.command_line = pipeline::shell_command_line(command_line());
+    provenance.inputs.push_back(pipeline::hash_input("scan", args->scan));
+    if (!args->landmarks.empty() && !args->no_landmarks)
+      provenance.inputs.push_back(pipeline::hash_input("landmarks", args->landmarks));
+    provenance.inputs.push_back(pipeline::hash_input(
+        "template", args->template_path.empty() ? model::default_template_path() : fs::path(args->template_path)));
+    if (!args->config.empty()) provenance.inputs.push_back(pipeline::hash_input("config", args->config));
+    req.provenance = std::move(provenance);
 
     const auto result = pipeline::register_scan(req, progress_printer(args->quiet));
     if (!result.usable()) {

@@ -227,18 +227,18 @@ void run_render(const RenderArgs& a) {
 void register_render(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<RenderArgs>();
   auto* sub = app.add_subcommand("render", "Render a mesh (with landmarks and drawings) or a template to PNG");
-  sub->add_option("mesh", args->mesh, "Mesh file (.ply, .obj, .stl); omit with --template");
-  auto* tpl = sub->add_option("--template", args->template_file,
+  sub->add_option("mesh", args->mesh, "Mesh file (.ply, .obj, .stl, .vtk, .vtp); omit with --template");
+  auto* tpl = sub->add_option("--template,-t", args->template_file,
                               "Render a rigged template (.gltf/.glb) with its landmarks and drawings on the rest "
                               "mesh; without FILE the built-in default template")
                   ->expected(0, 1);
-  sub->add_option("--landmarks", args->landmarks, "Landmarks to draw (.mrk.json, .json, .csv)");
+  sub->add_option("--landmarks,-l", args->landmarks, "Landmarks to draw (.mrk.json, .json, .csv)");
   sub->add_option("--drawings", args->drawings, "Curves to draw (Slicer .mrk.json)");
   sub->add_option("--view", args->view, "front, side, oblique, back, top or all (= front, side, oblique)")
       ->capture_default_str();
   sub->add_option("--size", args->size, "Image width and height in pixels")->capture_default_str();
   sub->add_option("--title", args->title, "Caption line (default: the input's file name)");
-  sub->add_option("--out", args->out, "Output PNG, or prefix: PREFIX_<view>.png")->required();
+  sub->add_option("--out,-o", args->out, "Output PNG, or prefix: PREFIX_<view>.png")->required();
   sub->add_option("--frame", args->frame,
                   "View frame: auto (template: identity; mesh: landmarks, else principal axes), landmarks, "
                   "axes, identity")

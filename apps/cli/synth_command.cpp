@@ -110,15 +110,15 @@ void register_synth(CLI::App& app, int& exit_code) {
   auto args = std::make_shared<SynthArgs>();
   auto* sub = app.add_subcommand(
       "synth", "Generate synthetic scan cases with full ground truth (bench layout: scan.ply, landmarks.mrk.json, truth/)");
-  sub->add_option("--out", args->out, "case directory (one case) or parent directory (--count > 1)")->required();
+  sub->add_option("--out,-o", args->out, "case directory (one case) or parent directory (--count > 1)")->required();
   sub->add_option("--seed", args->seed, "random seed (case i of --count uses seed + i)")->capture_default_str();
   sub->add_option("--pose", args->pose, "standing or supine (with --count, poses alternate from this one)")
       ->capture_default_str();
   sub->add_option("--units", args->units, "units of the written files: mm or m")->capture_default_str();
-  sub->add_option("--template", args->template_file, "rigged template (.glb/.gltf); default: the shipped template");
+  sub->add_option("--template,-t", args->template_file, "rigged template (.glb/.gltf); default: the shipped template");
   sub->add_option("--count", args->count, "number of cases (DIR/synth_<seed>_<pose>)")->capture_default_str();
   sub->add_flag("--force", args->force, "overwrite existing cases");
-  sub->add_flag("--quiet", args->quiet, "print nothing on success");
+  sub->add_flag("--quiet,-q", args->quiet, "print nothing on success");
   sub->add_option("--noise-mm", args->noise_mm, "white noise along the normal, sd in mm (default 0.5)");
   sub->add_option("--lowfreq-noise-mm", args->lowfreq_noise_mm, "smooth normal noise amplitude, mm (default 0.5)");
   sub->add_option("--rotation-deg", args->rotation_deg, "max random rotation of the scan, degrees (default 20)");

@@ -29,10 +29,10 @@ struct LoadedTemplate {
   model::RiggedModel model;
 };
 
-LoadedTemplate load(const std::string& file) {
+LoadedTemplate load(const std::string& file, const std::string& mesh = "") {
   LoadedTemplate t;
   t.path = file.empty() ? model::default_template_path() : std::filesystem::path(file);
-  t.model = model::load_gltf(t.path);
+  t.model = model::load_gltf(t.path, mesh);
   return t;
 }
 
@@ -137,15 +137,16 @@ void register_template(CLI::App& app, int& exit_code) {
 
   // template info
   struct InfoArgs {
-    std::string file;
+    std::string file, mesh;
     bool json = false;
   };
   auto info_args = std::make_shared<InfoArgs>();
   auto* info = sub->add_subcommand("info", "List a template's bones, blendshapes, landmarks, drawings and counts");
   info->add_option("file", info_args->file, "template .gltf/.glb (default: the shipped default template)");
   info->add_flag("--json", info_args->json, "print a JSON object instead of text");
+  info->add_option("--mesh", info_args->mesh, "the skinned mesh to read when the file has several (its node or mesh name)");
   info->callback([info_args] {
-    const LoadedTemplate t = load(info_args->file);
+    const LoadedTemplate t = load(info_args->file, info_args->mesh);
     if (info_args->json) std::cout << info_json(t).dump(2) << "\n";
     else print_info(std::cout, t);
   });
@@ -157,7 +158,7 @@ void register_template(CLI::App& app, int& exit_code) {
   };
   auto build_args = std::make_shared<BuildArgs>();
   auto* build = sub->add_subcommand("build", "Generate the default template and save it as glTF (.gltf or .glb)");
-  build->add_option("--out", build_args->out, "output file (.gltf or .glb)")->required();
+  build->add_option("--out,-o", build_args->out, "output file (.gltf or .glb)")->required();
   build->add_option("--edge-mm", build_args->edge_mm, "target edge length of the remeshed surface (mm)");
   build->callback([build_args] {
     Timer timer;
@@ -177,11 +178,11 @@ void register_template(CLI::App& app, int& exit_code) {
   };
   auto pose_args = std::make_shared<PoseArgs>();
   auto* pose = sub->add_subcommand("pose", "Pose a template with parameters from a JSON file and write the mesh");
-  pose->add_option("--template", pose_args->templ, "template .gltf/.glb (default: the shipped default template)");
+  pose->add_option("--template,-t", pose_args->templ, "template .gltf/.glb (default: the shipped default template)");
   pose->add_option("--params", pose_args->params,
                    "JSON object of parameter values by name, any subset (see `template info --json`)")
       ->required();
-  pose->add_option("--out", pose_args->out, "output mesh (.ply, .obj or .stl), mm")->required();
+  pose->add_option("--out,-o", pose_args->out, "output mesh (.ply, .obj, .stl or .vtk), mm")->required();
   pose->callback([pose_args] {
     const LoadedTemplate t = load(pose_args->templ);
     const model::PoseParams p = model::read_params_json(pose_args->params, t.model);

@@ -31,10 +31,10 @@ void register_volume(CLI::App& app, int& exit_code) {
   auto* sub = app.add_subcommand(
       "volume", "Volume inside closed curves drawn on a surface (e.g. breast contours): the surface inside each "
                 "curve against a chest-wall fill spanning it");
-  sub->add_option("mesh", args->mesh, "surface (.ply .obj .stl triangle mesh; a scan, fitted.ply, ...)")->required();
+  sub->add_option("mesh", args->mesh, "surface (.ply .obj .stl .vtk .vtp triangle mesh; a scan, fitted.ply, ...)")->required();
   sub->add_option("--curves,-c", args->curves, "closed curves on the surface (.mrk.json ClosedCurve, any units)")
       ->required();
-  sub->add_option("--name,-n", args->names, "measure only these curves (default: every closed curve)");
+  sub->add_option("--name", args->names, "measure only these curves (default: every closed curve)");
   sub->add_option("--fill", args->fill, "chest wall under the curve: membrane (harmonic) or thin-plate")
       ->check(CLI::IsMember({"membrane", "thin-plate"}));
   sub->add_option("--units", args->units, "mesh units: auto (from the extent), mm or m")

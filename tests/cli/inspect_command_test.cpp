@@ -206,7 +206,7 @@ TEST(InspectCommand, BadFilesFailWithOneLineNamingTheFile) {
   const fs::path txt = dir / "points.txt";
   std::ofstream(txt) << "xiphoid 1 2 3\n";
   EXPECT_EQ(test::run_cli("inspect '" + txt.string() + "'", &out), 4) << out;
-  EXPECT_NE(out.find("unknown extension '.txt' (supported: meshes .ply, .obj, .stl; landmarks and markups "
+  EXPECT_NE(out.find("unknown extension '.txt' (supported: meshes .ply, .obj, .stl, .vtk, .vtp; landmarks and markups "
                      ".mrk.json, .json, .csv, .fcsv)"),
             std::string::npos)
       << out;

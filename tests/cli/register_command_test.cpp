@@ -13,9 +13,12 @@
 
 #include <nlohmann/json.hpp>
 
+#include "breastfit/io/file_sha256.h"
 #include "breastfit/io/io.h"
 #include "breastfit/mesh/units.h"
+#include "breastfit/model/gltf_io.h"
 #include "support/test_paths.h"
+#include "support/toy_model.h"
 
 namespace breastfit {
 namespace {
@@ -90,6 +93,54 @@ TEST(RegisterCommand, WritesEveryOutputInTheScanUnits) {
     if (units == "m") EXPECT_LT(extent, 2.0);
     else EXPECT_GT(extent, 200.0);
   }
+}
+
+TEST(RegisterCommand, ReportsAreTraceable) {
+  if (test::cli_path().empty()) GTEST_SKIP() << "CLI not built";
+  const fs::path c = synth_case(5, "mm");
+  const fs::path out = test::temp_dir() / "out";
+  std::string log;
+  ASSERT_EQ(test::run_cli("register '" + (c / "scan.ply").string() + "' -l '" + (c / "landmarks.mrk.json").string() +
+                              "' --lambda-landmarks 0.5 --quiet --no-report-html -o '" + out.string() + "'",
+                          &log),
+            0)
+      << log;
+  const auto report = read_json(out / "report.json");
+  const auto& p = report["provenance"];
+  EXPECT_FALSE(p["breastfit_version"].get<std::string>().empty());
+  EXPECT_EQ(p["inputs"]["scan"]["path"], (c / "scan.ply").string());
+  EXPECT_EQ(p["inputs"]["scan"]["sha256"], io::file_sha256_hex(c / "scan.ply"));
+  EXPECT_EQ(p["inputs"]["landmarks"]["sha256"], io::file_sha256_hex(c / "landmarks.mrk.json"));
+  EXPECT_EQ(p["inputs"]["template"]["sha256"].get<std::string>().size(), 64u);
+  EXPECT_FALSE(p["inputs"].contains("config"));
+  EXPECT_EQ(p["fit_options"]["weights"]["lambda_landmarks"], 0.5) << p["fit_options"].dump();
+  EXPECT_TRUE(std::regex_match(report["run"]["started_utc"].get<std::string>(),
+                               std::regex(R"(\d{4}-\d\d-\d\dT\d\d:\d\d:\d\dZ)")));
+  EXPECT_NE(report["run"]["command_line"].get<std::string>().find("--lambda-landmarks 0.5"), std::string::npos);
+  const auto params = read_json(out / "params.json");
+  EXPECT_EQ(params["template"]["sha256"], p["inputs"]["template"]["sha256"]);
+  EXPECT_FALSE(params["template"]["name"].get<std::string>().empty());
+  // The fitted landmarks are not mistaken for the input ones in 3D Slicer.
+  const auto fitted_landmarks = read_json(out / "landmarks.mrk.json");
+  EXPECT_EQ(fitted_landmarks["markups"][0]["name"], "breastfit fitted landmarks");
+  EXPECT_TRUE(fitted_landmarks["markups"][0]["display"].contains("selectedColor"));
+}
+
+TEST(RegisterCommand, RefusesATemplateThatIsNotATorso) {
+  if (test::cli_path().empty()) GTEST_SKIP() << "CLI not built";
+  model::RiggedModel rig = test::make_toy_model();  // a rig without landmarks or drawings
+  rig.landmarks.clear();
+  rig.drawings.clear();
+  const fs::path dir = test::temp_dir();
+  model::save_gltf(dir / "rig.glb", rig);
+  const fs::path c = synth_case(5, "mm");
+  std::string log;
+  EXPECT_EQ(test::run_cli("register '" + (c / "scan.ply").string() + "' --no-landmarks -t '" + (dir / "rig.glb").string() +
+                              "' --quiet -o '" + (dir / "out").string() + "'",
+                          &log),
+            3);
+  EXPECT_NE(log.find("has no landmarks and no drawings: not a breastfit torso template"), std::string::npos) << log;
+  EXPECT_FALSE(fs::exists(dir / "out" / "report.json"));
 }
 
 TEST(RegisterCommand, NeverOverwritesWithoutForce) {
@@ -200,6 +251,12 @@ TEST(RegisterCommand, IsDeterministic) {
               0);
   for (const char* f : {"fitted.ply", "landmarks.mrk.json", "drawings.mrk.json", "params.json"})
     EXPECT_EQ(read_text(dir / "a" / f), read_text(dir / "b" / f)) << f;
+  // report.json: the provenance block is deterministic; only the run block (time, command line)
+  // and the measured times differ.
+  const auto report_a = read_json(dir / "a" / "report.json"), report_b = read_json(dir / "b" / "report.json");
+  ASSERT_TRUE(report_a.contains("provenance"));
+  EXPECT_EQ(report_a["provenance"], report_b["provenance"]);
+  EXPECT_NE(report_a["run"]["command_line"], report_b["run"]["command_line"]);  // --out differs
   // report.html: identical but for the measured registration time.
   const std::regex time_s("Registration time</th><td>[0-9.]+ s");
   const std::string html_a = read_text(dir / "a" / "report.html"), html_b = read_text(dir / "b" / "report.html");

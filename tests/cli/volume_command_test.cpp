@@ -98,7 +98,7 @@ TEST(VolumeCommand, MeasuresClosedCurvesInAnyUnits) {
   EXPECT_NEAR(jm["curves"][0]["volume_ml"].get<double>(), v_mm, 1e-3 * v_mm);
   // thin plate on the mesh as given: it continues the skin's slope around the circle (rising
   // inwards), so it cuts off part of the bump
-  ASSERT_EQ(test::run_cli(in_metres + " -n cap --fill thin-plate --target-edge 0 --json " + (dir / "vt.json").string(), &out),
+  ASSERT_EQ(test::run_cli(in_metres + " --name cap --fill thin-plate --target-edge 0 --json " + (dir / "vt.json").string(), &out),
             0)
       << out;
   const nlohmann::json jt = read_json(dir / "vt.json");

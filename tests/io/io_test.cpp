@@ -84,14 +84,20 @@ TEST(Io, UnknownExtensionMissingFileAndDirectory) {
   { std::ofstream(dir / "mesh.xyz") << "1 2 3\n"; }
   EXPECT_EQ(message_of(dir / "mesh.xyz"),
             (dir / "mesh.xyz").string() +
-                ": unknown mesh extension '.xyz' (supported: .ply, .obj, .stl)");
+                ": unknown mesh extension '.xyz' (supported: .ply, .obj, .stl, .vtk, .vtp)");
   EXPECT_EQ(message_of(dir / "noext"),
-            (dir / "noext").string() + ": no file extension (supported: .ply, .obj, .stl)");
+            (dir / "noext").string() + ": no file extension (supported: .ply, .obj, .stl, .vtk, .vtp)");
   EXPECT_EQ(message_of(dir / "missing.ply"),
             (dir / "missing.ply").string() + ": file does not exist");
   std::filesystem::create_directories(dir / "folder.obj");
   EXPECT_EQ(message_of(dir / "folder.obj"),
             (dir / "folder.obj").string() + ": is a directory, not a mesh file");
+  try {
+    write_mesh(dir / "out.vtp", full_mesh());  // .vtp is read, not written
+    ADD_FAILURE() << "expected IoError";
+  } catch (const IoError& e) {
+    EXPECT_EQ(e.problem(), "unknown mesh extension '.vtp' (supported: .ply, .obj, .stl, .vtk)");
+  }
   EXPECT_THROW(write_mesh(dir / "out.off", full_mesh()), IoError);
   EXPECT_THROW(write_mesh(dir / "folder.obj", full_mesh()), IoError);
   EXPECT_THROW(write_mesh(dir / "no_such_dir" / "m.ply", full_mesh()), IoError);

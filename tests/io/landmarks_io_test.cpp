@@ -104,6 +104,16 @@ TEST(LandmarksIo, SlicerFcsvInRasLpsAndCodedSystems) {
   const LandmarkSet moved = read_landmarks(
       write_text("cols.fcsv", "# CoordinateSystem = LPS\n# columns = label,z,y,x\nsternal_notch, 3, 2, 1\n"));
   EXPECT_EQ(*moved.find("sternal_notch"), Vec3(1, 2, 3));
+  // Slicer quotes fields holding commas ("" is a quote inside): a description before the label
+  // must not shift it.
+  const LandmarkSet quoted = read_landmarks(write_text(
+      "quoted.fcsv", "# CoordinateSystem = LPS\n# columns = id,x,y,z,desc,label\n"
+                     "1,1,2,3,\"the \"\"tip\"\", seen, twice\",\"nipple_R\"\n"
+                     "2,4,5,6,,xiphoid\n"));
+  ASSERT_EQ(quoted.points.size(), 2u);
+  EXPECT_EQ(quoted.points[0].name, "nipple_R");
+  EXPECT_EQ(quoted.points[0].position, Vec3(1, 2, 3));
+  EXPECT_EQ(*quoted.find("xiphoid"), Vec3(4, 5, 6));
 }
 
 TEST(LandmarksIo, PlainJsonInFileOrder) {

@@ -270,5 +270,20 @@ TEST(Markups, WriteValidatesOptionsAndValues) {
   EXPECT_EQ(nlohmann::json::parse(in)["markups"].size(), 2u);
 }
 
+TEST(Markups, PointsColourAndNameAreWrittenForSlicer) {
+  Markups m;
+  m.points.push_back({"nipple_R", Vec3(1, 2, 3)});
+  MarkupsWriteOptions o;
+  o.points_name = "fitted";
+  o.points_color = std::array<double, 3>{0.0, 0.75, 1.0};
+  const auto doc = nlohmann::json::parse(format_markups(m, o));
+  EXPECT_EQ(doc["markups"][0]["name"], "fitted");
+  EXPECT_EQ(doc["markups"][0]["display"]["selectedColor"], nlohmann::json::array({0.0, 0.75, 1.0}));
+  EXPECT_EQ(doc["markups"][0]["display"]["color"], nlohmann::json::array({0.0, 0.75, 1.0}));
+  EXPECT_FALSE(nlohmann::json::parse(format_markups(m, {}))["markups"][0].contains("display"));
+  o.points_color = std::array<double, 3>{0.0, 2.0, 1.0};
+  EXPECT_THROW(format_markups(m, o), InvalidInput);
+}
+
 }  // namespace
 }  // namespace breastfit::io

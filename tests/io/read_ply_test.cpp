@@ -174,5 +174,24 @@ TEST(ReadPly, PerVertexTexcoordsAndNonFiniteNormalsDropped) {
   EXPECT_EQ(m.FUV, m.F);
 }
 
+TEST(ReadPly, ConcaveFaceIsEarClippedAfterTheVertices) {
+  // An L-shaped hexagon (area 3) in a face element listed before the vertices: its fan from
+  // corner 0 would cover the notch (area 3.5 counted twice over).
+  const std::string s =
+      "ply\nformat ascii 1.0\nelement face 1\nproperty list uchar int vertex_indices\n"
+      "element vertex 6\nproperty float x\nproperty float y\nproperty float z\nend_header\n"
+      "6 1 2 3 4 5 0\n0 0 0\n2 0 0\n2 1 0\n1 1 0\n1 2 0\n0 2 0\n";
+  const TriangleMesh m = read_ply_from_memory(s, "l.ply");
+  ASSERT_EQ(m.num_faces(), 4);
+  double area = 0;
+  for (Eigen::Index f = 0; f < m.F.rows(); ++f) {
+    const Eigen::Vector3d p = m.V.row(m.F(f, 0)), q = m.V.row(m.F(f, 1)), r = m.V.row(m.F(f, 2));
+    const Eigen::Vector3d n = (q - p).cross(r - p);
+    EXPECT_GT(n.z(), 0) << "triangle " << f << " keeps the polygon's winding";
+    area += 0.5 * n.norm();
+  }
+  EXPECT_NEAR(area, 3.0, 1e-12);
+}
+
 }  // namespace
 }  // namespace breastfit::io

@@ -287,5 +287,43 @@ TEST(GltfIo, BadFilesRaiseIoError) {
   EXPECT_THROW(save_gltf(dir / "invalid.glb", invalid), InvalidInput);
 }
 
+std::string load_problem(const std::filesystem::path& path, const std::string& mesh = "") {
+  try {
+    load_gltf(path, mesh);
+  } catch (const IoError& e) {
+    EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos);
+    return e.problem();
+  }
+  ADD_FAILURE() << "expected IoError for " << path;
+  return "";
+}
+
+TEST(GltfIo, Gltf1EmptySkinAndSeveralSkinnedMeshesAreNamed) {
+  const auto dir = test::temp_dir();
+  std::ofstream(dir / "v1.gltf") << R"({"asset": {"version": "1.0"}, "scene": "s", "scenes": {"s": {"nodes": []}}})";
+  EXPECT_EQ(load_problem(dir / "v1.gltf"), "glTF 1.0 is not supported (2.0 required): re-export the file as glTF 2.0");
+  std::ofstream(dir / "v1.glb", std::ios::binary) << std::string("glTF\x01\x00\x00\x00\x14\x00\x00\x00\x00\x00\x00\x00\x00\x00\x00\x00", 20);
+  EXPECT_NE(load_problem(dir / "v1.glb").find("glTF 1.0 is not supported"), std::string::npos);
+
+  save_gltf(dir / "toy.gltf", test::make_toy_model());
+  std::ifstream in(dir / "toy.gltf");
+  const auto good = nlohmann::json::parse(in);
+  auto j = good;
+  j["skins"][0] = nlohmann::json::object();
+  std::ofstream(dir / "empty_skin.gltf") << j.dump();
+  EXPECT_EQ(load_problem(dir / "empty_skin.gltf"), "skin 0 has no joints (a skin needs a non-empty \"joints\" list)");
+
+  j = good;
+  auto second = j["nodes"][0];
+  second["name"] = "Second";
+  j["nodes"][0]["name"] = "First";
+  j["nodes"].push_back(second);
+  j["scenes"][0]["nodes"].push_back(j["nodes"].size() - 1);
+  std::ofstream(dir / "two.gltf") << j.dump();
+  EXPECT_EQ(load_problem(dir / "two.gltf"), "2 skinned meshes ('First', 'Second'): choose one with --mesh NAME");
+  EXPECT_EQ(load_problem(dir / "two.gltf", "Third"), "no skinned mesh named 'Third' (the file has 'First', 'Second')");
+  EXPECT_EQ(load_gltf(dir / "two.gltf", "Second").num_vertices(), test::make_toy_model().num_vertices());
+}
+
 }  // namespace
 }  // namespace breastfit::model

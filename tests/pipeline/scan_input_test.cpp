@@ -57,6 +57,19 @@ TEST(ScanInput, RejectsScansThatAreNotATorso) {
   EXPECT_THROW(prepare_scan(TriangleMesh{}, "empty.ply", std::nullopt), InvalidInput);
 }
 
+TEST(ScanInput, WarnsAboutASizeFarFromAnAdultTorso) {
+  // A 0.155 m bunny taken as 155 mm: kept, but said.
+  const auto small = prepare_scan(half_cylinder(50, 155), "bunny.ply", std::nullopt);
+  ASSERT_EQ(small.warnings.size(), 1u);
+  EXPECT_NE(small.warnings[0].find("bunny.ply: the scan spans 155 mm (in mm), small for an adult upper torso"),
+            std::string::npos)
+      << small.warnings[0];
+  EXPECT_TRUE(prepare_scan(half_cylinder(150, 450), "torso.ply", std::nullopt).warnings.empty());
+  const auto large = prepare_scan(half_cylinder(300, 1200), "body.ply", mesh::Units::Millimetres);
+  ASSERT_EQ(large.warnings.size(), 1u);
+  EXPECT_NE(large.warnings[0].find("large for an adult upper torso"), std::string::npos);
+}
+
 TEST(ScanInput, PointCloudsBecomeOrientedSplats) {
   auto scan = half_cylinder(150, 450);
   scan.F.resize(0, 3);

@@ -1,7 +1,8 @@
 #pragma once
 /// \file Mesh file front door: read or write a triangle mesh choosing the format by extension.
 ///
-/// Supported: `.ply` (ascii, binary little/big endian), `.obj`, `.stl` (ascii and binary);
+/// Supported: `.ply` (ascii, binary little/big endian), `.obj`, `.stl` (ascii and binary),
+/// `.vtk` (legacy VTK, ascii and binary) and, for reading only, `.vtp` (VTK XML PolyData);
 /// extensions are matched case-insensitively. Coordinates are returned exactly as stored in the
 /// file: no unit conversion happens here (see the mesh layer for units). Every problem with a
 /// file — missing, a directory, unknown extension, truncated, lying header, bad index,
@@ -21,7 +22,9 @@
 namespace breastfit::io {
 
 /// The mesh file extensions read_mesh and write_mesh accept, as error messages list them.
-inline constexpr std::string_view kMeshExtensions = ".ply, .obj, .stl";
+inline constexpr std::string_view kMeshExtensions = ".ply, .obj, .stl, .vtk, .vtp";
+/// The mesh file extensions write_mesh accepts.
+inline constexpr std::string_view kMeshWriteExtensions = ".ply, .obj, .stl, .vtk";
 
 /// How write_mesh and the per-format writers encode a mesh.
 struct MeshWriteOptions {
@@ -38,14 +41,15 @@ struct MeshWriteOptions {
 /// Whether the path ends in one of kMeshExtensions (case-insensitive).
 bool has_mesh_extension(const std::filesystem::path& path);
 
-/// Reads a mesh (or point cloud, F empty) choosing the reader by extension (.ply .obj .stl).
+/// Reads a mesh (or point cloud, F empty) choosing the reader by extension (.ply .obj .stl .vtk
+/// .vtp).
 /// \param[in] path  file to read
 /// \return the mesh; V in file units, F fan-triangulated, optional N, C, UV/FUV
 /// \throws IoError(path, problem) for a missing file, a directory, an unknown extension or any
 ///         malformed content
 TriangleMesh read_mesh(const std::filesystem::path& path);
 
-/// Writes a mesh choosing the writer by extension (.ply .obj .stl).
+/// Writes a mesh choosing the writer by extension (.ply .obj .stl .vtk).
 /// \param[in] path     destination (overwritten)
 /// \param[in] mesh     mesh to write; indices must be in range
 /// \param[in] options  encoding options (defaults: binary, no normals, no colours, texcoords)

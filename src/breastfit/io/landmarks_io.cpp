@@ -104,6 +104,35 @@ std::optional<std::string_view> fcsv_header(std::string_view line, std::string_v
   return trim(line.substr(1));
 }
 
+/// The fields of one CSV row as 3D Slicer writes .fcsv rows: a field in double quotes may hold
+/// commas, and "" inside it is one quote ("label, left","the ""upper"" point").
+std::vector<std::string> split_csv_row(std::string_view line) {
+  std::vector<std::string> fields(1);
+  bool quoted = false;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (quoted) {
+      if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
+        fields.back() += '"';
+        ++i;
+      } else if (c == '"') {
+        quoted = false;
+      } else {
+        fields.back() += c;
+      }
+    } else if (c == '"' && trim(fields.back()).empty()) {
+      fields.back().clear();
+      quoted = true;
+    } else if (c == ',') {
+      fields.emplace_back();
+    } else {
+      fields.back() += c;
+    }
+  }
+  for (std::string& f : fields) f = std::string(trim(f));
+  return fields;
+}
+
 /// A legacy 3D Slicer fiducial list (.fcsv): '#' header lines, then one row per point. The
 /// columns header names the x, y, z and label columns (Slicer's order when absent); the
 /// CoordinateSystem header "RAS" or "0" (the default) is converted to LPS by negating x and y
@@ -133,7 +162,7 @@ std::vector<NamedPoint> parse_fcsv(std::string_view text, const std::string& sou
       }
       continue;
     }
-    const std::vector<std::string_view> fields = split_commas(line);
+    const std::vector<std::string> fields = split_csv_row(line);
     double xyz[3];
     const char* axes[3] = {"x", "y", "z"};
     for (int a = 0; a < 3; ++a) {

@@ -201,6 +201,9 @@ void MarkupsWriteOptions::validate() const {
     throw InvalidInput("MarkupsWriteOptions.coordinate_system = '" + coordinate_system +
                        "' is not one of LPS, RAS");
   if (points_name.empty()) throw InvalidInput("MarkupsWriteOptions.points_name must not be empty");
+  if (points_color)
+    for (double c : *points_color)
+      if (!(c >= 0 && c <= 1)) throw InvalidInput("MarkupsWriteOptions.points_color must be RGB values in [0, 1]");
 }
 
 std::string format_markups(const Markups& markups, const MarkupsWriteOptions& options,
@@ -264,7 +267,12 @@ std::string format_markups(const Markups& markups, const MarkupsWriteOptions& op
     for (size_t i = 0; i < markups.points.size(); ++i)
       cps.push_back(control_point(i, markups.points[i].name, markups.points[i].position,
                                   "point '" + markups.points[i].name + "'"));
-    doc["markups"].push_back(markup("Fiducial", options.points_name, std::move(cps)));
+    ordered_json points = markup("Fiducial", options.points_name, std::move(cps));
+    if (options.points_color) {
+      const ordered_json rgb = *options.points_color;
+      points["display"] = {{"color", rgb}, {"selectedColor", rgb}};
+    }
+    doc["markups"].push_back(std::move(points));
   }
   for (const Curve& c : markups.curves) {
     ordered_json cps = ordered_json::array();

@@ -20,7 +20,9 @@
 ///   breastfit::Markups in = breastfit::io::read_markups("landmarks.mrk.json");   // LPS mm
 ///   breastfit::io::write_markups("drawings.mrk.json", drawings, {.units = "m"});
 /// \endcode
+#include <array>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -67,6 +69,9 @@ struct MarkupsWriteOptions {
   std::string units = "mm";              ///< "mm" or "m": units written (positions converted)
   std::string coordinate_system = "LPS"; ///< "LPS" or "RAS" (x and y negated for RAS)
   std::string points_name = "landmarks"; ///< name of the Fiducial markup holding the points
+  /// Display colour (RGB in [0,1]) of the points in 3D Slicer, written as the Fiducial markup's
+  /// `display` `color` and `selectedColor`; nullopt: no display block (Slicer's defaults).
+  std::optional<std::array<double, 3>> points_color;
 
   /// \throws InvalidInput naming the field, value and accepted values
   void validate() const;

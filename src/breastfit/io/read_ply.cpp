@@ -13,6 +13,7 @@
 #include "breastfit/core/errors.h"
 #include "breastfit/io/detail/file_bytes.h"
 #include "breastfit/io/detail/mesh_arrays.h"
+#include "breastfit/io/detail/polygon_triangulation.h"
 #include "breastfit/io/detail/text.h"
 #include "breastfit/mesh/index_triangulation.h"
 
@@ -549,38 +550,56 @@ int find_face_list(const PlyElement& element) {
 }
 
 /// How an element's index lists make triangles: `face` lists are polygons (at least 3 indices,
-/// fan-triangulated); `tristrips` lists are triangle strips separated by the restart index -1.
+/// triangulated by their corner positions); `tristrips` lists are triangle strips separated by
+/// the restart index -1.
 enum class IndexLists { Polygons, Strips };
 
-/// Appends the triangles of the strips in `indices` (separated by -1) to `tris`.
-void append_strips(const std::vector<Index>& indices, std::vector<Index>& tris) {
+/// One element's index lists as read, triangulated once the vertices are known (a face element
+/// may come before the vertex element): polygons stored as `count, c0, c1, ...`, strips as they
+/// are in the file (separated by -1).
+struct IndexListData {
+  IndexLists kind = IndexLists::Polygons;
+  std::vector<Index> indices;
+};
+
+/// Appends the triangles of `lists` to `tris`; `V` holds the vertices (3 doubles each).
+void append_triangles(const IndexListData& lists, const std::vector<double>& V,
+                      std::vector<Index>& tris) {
+  const std::vector<Index>& in = lists.indices;
+  if (lists.kind == IndexLists::Polygons) {
+    detail::PolygonTriangulator triangulator;
+    for (std::size_t k = 0; k < in.size(); k += 1 + static_cast<std::size_t>(in[k])) {
+      triangulator.append(V, in.data() + k + 1, static_cast<std::size_t>(in[k]), tris);
+    }
+    return;
+  }
   std::size_t start = 0;
-  for (std::size_t k = 0; k <= indices.size(); ++k) {
-    if (k < indices.size() && indices[k] >= 0) continue;
-    mesh::append_strip_triangles(indices.data() + start, k - start, tris);
+  for (std::size_t k = 0; k <= in.size(); ++k) {
+    if (k < in.size() && in[k] >= 0) continue;
+    mesh::append_strip_triangles(in.data() + start, k - start, tris);
     start = k + 1;
   }
 }
 
 template <typename Source>
-std::vector<Index> read_index_lists(Source& source, const PlyElement& element,
-                                    std::uint64_t num_vertices, IndexLists kind,
-                                    const std::string& name) {
+IndexListData read_index_lists(Source& source, const PlyElement& element,
+                               std::uint64_t num_vertices, IndexLists kind,
+                               const std::string& name) {
   const int list = find_face_list(element);
   if (list < 0 && element.count > 0) {
     throw IoError(name, "the '" + element.name +
                             "' element has no 'vertex_indices' (or 'vertex_index') list property");
   }
-  std::vector<Index> tris;
+  IndexListData out;
+  out.kind = kind;
   if (list >= 0 && kind == IndexLists::Polygons) {
-    // A face holds at least 3 indices, so the remaining data bounds the triangles to reserve
-    // (the header's count alone could be a lie far beyond the file size).
+    // A face holds at least 3 indices, so the remaining data bounds what to reserve (the
+    // header's count alone could be a lie far beyond the file size).
     const PlyType index_type = element.properties[static_cast<std::size_t>(list)].type;
-    tris.reserve(
-        3 * static_cast<std::size_t>(std::min(element.count, source.capacity(index_type) / 3)));
+    out.indices.reserve(
+        4 * static_cast<std::size_t>(std::min(element.count, source.capacity(index_type) / 3)));
   }
   const double lowest = kind == IndexLists::Strips ? -1.0 : 0.0;  // -1 restarts a strip
-  std::vector<Index> corners;
   for (std::uint64_t i = 0; i < element.count; ++i) {
     for (std::size_t j = 0; j < element.properties.size(); ++j) {
       const PlyProperty& p = element.properties[j];
@@ -597,7 +616,7 @@ std::vector<Index> read_index_lists(Source& source, const PlyElement& element,
                                 plural(count, "vertex index", "vertex indices") +
                                 " (a face needs at least 3)");
       }
-      corners.clear();
+      if (kind == IndexLists::Polygons) out.indices.push_back(static_cast<Index>(count));
       for (std::uint64_t k = 0; k < count; ++k) {
         double v = 0;
         const Status s = source.read(p.type, v);
@@ -608,16 +627,12 @@ std::vector<Index> read_index_lists(Source& source, const PlyElement& element,
                                   " but the file has " +
                                   plural(num_vertices, "vertex", "vertices"));
         }
-        corners.push_back(static_cast<Index>(v));
+        out.indices.push_back(static_cast<Index>(v));
       }
-      if (kind == IndexLists::Polygons) {
-        mesh::append_fan_triangles(corners.data(), corners.size(), tris);
-      } else {
-        append_strips(corners, tris);
-      }
+      if (kind == IndexLists::Strips) out.indices.push_back(-1);
     }
   }
-  return tris;
+  return out;
 }
 
 template <typename Source>
@@ -642,20 +657,21 @@ TriangleMesh read_body(Source& source, const PlyHeader& header, const std::strin
   find_vertex_roles(*vertex, name);  // fail on missing x,y,z before reading anything
 
   VertexData vertices;
-  std::vector<Index> tris;
+  std::vector<IndexListData> lists;
   for (const PlyElement& e : header.elements) {
     if (e.properties.empty()) continue;  // nothing stored, whatever the count
     if (&e == vertex) {
       vertices = read_vertices(source, e, name);
     } else if (&e == face || &e == strips) {
-      const std::vector<Index> more = read_index_lists(
-          source, e, vertex->count, &e == face ? IndexLists::Polygons : IndexLists::Strips, name);
-      tris.insert(tris.end(), more.begin(), more.end());
+      lists.push_back(read_index_lists(
+          source, e, vertex->count, &e == face ? IndexLists::Polygons : IndexLists::Strips, name));
     } else {
       skip_element(source, e, name);
     }
   }
 
+  std::vector<Index> tris;
+  for (const IndexListData& l : lists) append_triangles(l, vertices.V, tris);
   TriangleMesh mesh;
   mesh.V = detail::to_points(vertices.V);
   mesh.F = detail::to_triangles(tris);

@@ -4,8 +4,9 @@
 /// Vertex element: x,y,z of any scalar type (required); nx,ny,nz (kept as TriangleMesh::N);
 /// red,green,blue or diffuse_red,... (uchar kept, float in [0,1] scaled to 0..255, kept as C);
 /// u,v / s,t / texture_u,texture_v (kept as per-vertex UV with FUV = F). Face element: list
-/// property `vertex_indices` or `vertex_index` with any integer count and index types; polygons
-/// are fan-triangulated, triangles repeating a vertex are dropped. Tristrips element (as some
+/// property `vertex_indices` or `vertex_index` with any integer count and index types; convex
+/// polygons are fan-triangulated, concave ones ear-clipped in their plane (as the OBJ reader
+/// does), triangles repeating a vertex are dropped. Tristrips element (as some
 /// scanners write): the same list property holds triangle strips separated by the restart index
 /// -1, triangulated with alternating winding ((v0,v1,v2), (v2,v1,v3), (v2,v3,v4), ...), dropping
 /// those repeating a vertex; face and strip triangles follow the header's element order. Other elements and properties (including

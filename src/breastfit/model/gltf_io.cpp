@@ -3,10 +3,14 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
+#include <fstream>
 #include <functional>
+#include <iterator>
 #include <map>
 #include <set>
+#include <string_view>
 #include <unordered_map>
 
 #include <nlohmann/json.hpp>
@@ -126,7 +130,8 @@ struct Welding {
 
 class Loader {
  public:
-  Loader(std::string path, const tg::Model& g) : path_(std::move(path)), g_(g) {}
+  Loader(std::string path, const tg::Model& g, std::string mesh)
+      : path_(std::move(path)), g_(g), wanted_mesh_(std::move(mesh)) {}
   RiggedModel run();
 
  private:
@@ -176,6 +181,7 @@ class Loader {
   int mesh_node_ = -1;
   const tg::Mesh* mesh_ = nullptr;
   const tg::Skin* skin_ = nullptr;
+  std::string wanted_mesh_;  // the skinned mesh asked for by name (empty: the only one)
   json mesh_extras_;
   const json* bf_ = nullptr;  // mesh_extras_["breastfit"], or null
 };
@@ -380,8 +386,33 @@ RiggedModel Loader::run() {
 
 /// The mesh node: first with mesh and skin, else first with a mesh; its mesh and skin checked.
 void Loader::select_mesh_node() {
-  for (size_t i = 0; i < g_.nodes.size() && mesh_node_ < 0; ++i)
-    if (g_.nodes[i].mesh >= 0 && g_.nodes[i].skin >= 0) mesh_node_ = static_cast<int>(i);
+  std::vector<int> skinned;
+  std::string names;
+  const auto name_of = [&](int i) {
+    const tg::Node& n = g_.nodes[i];
+    if (!n.name.empty()) return n.name;
+    if (n.mesh < static_cast<int>(g_.meshes.size()) && !g_.meshes[n.mesh].name.empty()) return g_.meshes[n.mesh].name;
+    return "node " + std::to_string(i);
+  };
+  for (size_t i = 0; i < g_.nodes.size(); ++i)
+    if (g_.nodes[i].mesh >= 0 && g_.nodes[i].skin >= 0) {
+      skinned.push_back(static_cast<int>(i));
+      names += std::string(names.empty() ? "" : ", ") + "'" + name_of(static_cast<int>(i)) + "'";
+    }
+  if (!wanted_mesh_.empty()) {
+    for (int i : skinned) {
+      const tg::Node& n = g_.nodes[i];
+      const bool mesh_named = n.mesh < static_cast<int>(g_.meshes.size()) && g_.meshes[n.mesh].name == wanted_mesh_;
+      if (n.name == wanted_mesh_ || mesh_named) mesh_node_ = i;
+    }
+    if (mesh_node_ < 0)
+      fail("no skinned mesh named '" + wanted_mesh_ + "' (" +
+           (skinned.empty() ? std::string("the file has none") : "the file has " + names) + ")");
+  } else if (skinned.size() > 1) {
+    fail(std::to_string(skinned.size()) + " skinned meshes (" + names + "): choose one with --mesh NAME");
+  } else if (skinned.size() == 1) {
+    mesh_node_ = skinned.front();
+  }
   for (size_t i = 0; i < g_.nodes.size() && mesh_node_ < 0; ++i)
     if (g_.nodes[i].mesh >= 0) mesh_node_ = static_cast<int>(i);
   if (mesh_node_ < 0) fail("no node with a mesh");
@@ -1067,15 +1098,56 @@ void add_nodes_and_skin(const RiggedModel& model, tg::Model& g, BufferBuilder& b
   g.skins.push_back(skin);
 }
 
+/// Problems tinygltf reports badly or not at all, found in the file's JSON: a glTF 1.0 file and
+/// a skin without joints. Anything else is left to tinygltf.
+void check_gltf_json(const std::filesystem::path& path, const std::string& ext) {
+  const std::string p = path.string();
+  std::ifstream in(path, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::string_view text = bytes;
+  if (ext == ".glb") {
+    if (bytes.size() < 20 || bytes.compare(0, 4, "glTF") != 0) return;
+    const auto u32 = [&](std::size_t at) {
+      std::uint32_t v = 0;
+      for (int k = 3; k >= 0; --k) v = (v << 8) | static_cast<unsigned char>(bytes[at + static_cast<std::size_t>(k)]);
+      return v;
+    };
+    if (u32(4) == 1) throw IoError(p, "glTF 1.0 is not supported (2.0 required): re-export the file as glTF 2.0");
+    const std::uint32_t length = u32(12);
+    if (length > bytes.size() - 20) return;
+    text = text.substr(20, length);
+  }
+  const json j = json::parse(text, nullptr, /*allow_exceptions=*/false);
+  if (!j.is_object()) return;
+  if (const auto a = j.find("asset"); a != j.end() && a->is_object()) {
+    const auto v = a->find("version");
+    if (v != a->end() && v->is_string() && v->get<std::string>().rfind("1", 0) == 0)
+      throw IoError(p, "glTF " + v->get<std::string>() + " is not supported (2.0 required): re-export the file as glTF 2.0");
+  }
+  if (const auto skins = j.find("skins"); skins != j.end() && skins->is_array()) {
+    for (std::size_t i = 0; i < skins->size(); ++i) {
+      const json& skin = (*skins)[i];
+      const auto joints = skin.is_object() ? skin.find("joints") : skin.end();
+      if (!skin.is_object() || joints == skin.end() || !joints->is_array() || joints->empty()) {
+        const std::string name = skin.is_object() && skin.contains("name") && skin["name"].is_string()
+                                     ? " ('" + skin["name"].get<std::string>() + "')"
+                                     : "";
+        throw IoError(p, "skin " + std::to_string(i) + name + " has no joints (a skin needs a non-empty \"joints\" list)");
+      }
+    }
+  }
+}
+
 }  // namespace
 
-RiggedModel load_gltf(const std::filesystem::path& path) {
+RiggedModel load_gltf(const std::filesystem::path& path, const std::string& mesh) {
   const std::string p = path.string();
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw IoError(p, "no such file");
   if (std::filesystem::is_directory(path, ec)) throw IoError(p, "is a directory, not a glTF file");
   const std::string ext = lower_extension(path);
   if (ext != ".gltf" && ext != ".glb") throw IoError(p, "unsupported template extension '" + ext + "' (use .gltf or .glb)");
+  check_gltf_json(path, ext);
   tg::TinyGLTF loader;
   tg::Model g;
   std::string err, warn;
@@ -1090,7 +1162,7 @@ RiggedModel load_gltf(const std::filesystem::path& path) {
     if (first.empty()) first = "unknown error";
     throw IoError(p, "invalid glTF: " + first);
   }
-  Loader l(p, g);
+  Loader l(p, g, mesh);
   try {
     return l.run();
   } catch (const json::exception& e) {

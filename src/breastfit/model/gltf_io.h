@@ -20,6 +20,7 @@
 ///   breastfit::model::save_gltf("copy.gltf", m);
 /// \endcode
 #include <filesystem>
+#include <string>
 
 #include "breastfit/model/rigged_model.h"
 
@@ -28,8 +29,9 @@ namespace breastfit::model {
 /// Loads a rigged template from a `.gltf` (JSON, buffers embedded as base64 data URIs or in
 /// external files next to it) or `.glb` (binary) file.
 ///
-/// The mesh is the first node with both a mesh and a skin (else the first node with a mesh; it
-/// then gets a single bone "root" at the mesh centroid). All triangle primitives of that mesh
+/// The mesh is the node with both a mesh and a skin (else the first node with a mesh; it then
+/// gets a single bone "root" at the mesh centroid). A file with several skinned meshes is
+/// refused with their names unless `mesh` names one (its node's or its mesh's name). All triangle primitives of that mesh
 /// (mode 4 triangles, 5 strips and 6 fans; strips and fans triangulated) are concatenated in
 /// order (face indices of landmarks and drawings refer to that order).
 /// Up to 8 influences per vertex (JOINTS_0/WEIGHTS_0, JOINTS_1/WEIGHTS_1) are read and
@@ -40,9 +42,12 @@ namespace breastfit::model {
 /// seams and sharp edges).
 /// \param[in] path  file to read (extension .gltf or .glb, case-insensitive)
 /// \return the model, which passes RiggedModel::validate()
-/// \throws IoError(path, problem) for a missing or malformed file, an unsupported extension, an
-///         accessor out of bounds, or extras that do not fit the mesh
-RiggedModel load_gltf(const std::filesystem::path& path);
+/// \param[in] mesh  which skinned mesh to load when the file has several (empty: the only one)
+/// \throws IoError(path, problem) for a missing or malformed file (a glTF 1.0 file and a skin
+///         without joints are named as such), an unsupported extension, several skinned meshes
+///         and no (or an unknown) `mesh`, an accessor out of bounds, or extras that do not fit
+///         the mesh
+RiggedModel load_gltf(const std::filesystem::path& path, const std::string& mesh = "");
 
 /// Saves a rigged template as glTF 2.0: `.gltf` with the buffer embedded as a base64 data URI,
 /// or `.glb`, chosen by extension (case-insensitive). Writes one skinned mesh (positions,

@@ -63,13 +63,21 @@ void write_register_outputs(const fs::path& dir, const RegisterResult& r, const 
 
   io::MarkupsWriteOptions mo;
   mo.units = r.scan.units == mesh::Units::Metres ? "m" : "mm";
-  io::write_markups(set.path("landmarks.mrk.json"), r.model_landmarks_mm, mo);
+  io::MarkupsWriteOptions landmark_options = mo;  // not to be confused with the input landmarks
+  landmark_options.points_name = kFittedLandmarksName;
+  landmark_options.points_color = kFittedLandmarksColor;
+  io::write_markups(set.path("landmarks.mrk.json"), r.model_landmarks_mm, landmark_options);
   io::write_markups(set.path("drawings.mrk.json"), r.drawings_mm, mo);
   transfer::write_drawings_ply(set.path("drawings.ply"), r.drawings_on_scan, from_mm);
   transfer::write_drawings_obj(set.path("drawings.obj"), r.drawings_on_scan, from_mm);
   transfer::write_scan_painted(set.path("scan_painted.ply"), r.scan.mesh_mm, r.drawings_on_scan, from_mm);
 
   nlohmann::json params = model::params_to_json(model, r.fit.params);
+  params["template"] = {{"name", model.name}};
+  if (const InputFile* t = r.provenance ? r.provenance->input("template") : nullptr) {
+    params["template"]["path"] = t->path;
+    params["template"]["sha256"] = t->sha256;
+  }
   params["units_note"] = "translations in mm in the scan frame (converted from the file's units)";
   if (r.fit.detail_offsets.size() > 0)
     params["surface_detail"] = {

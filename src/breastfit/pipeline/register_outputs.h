@@ -2,6 +2,7 @@
 /// \file Writing the outputs of `breastfit register` in the scan's frame and units:
 /// fitted.ply, landmarks.mrk.json, drawings.mrk.json, drawings.ply/.obj, scan_painted.ply,
 /// params.json, report.json and report.html (report_html.h).
+#include <array>
 #include <filesystem>
 #include <vector>
 
@@ -10,6 +11,12 @@
 #include "breastfit/pipeline/report_figures.h"
 
 namespace breastfit::pipeline {
+
+/// The Fiducial markup name and 3D Slicer display colour (cyan) of the fitted landmarks in
+/// landmarks.mrk.json, distinct from the input landmarks a person placed (Slicer's default name
+/// and colours).
+inline constexpr const char* kFittedLandmarksName = "breastfit fitted landmarks";
+inline constexpr std::array<double, 3> kFittedLandmarksColor{0.0, 0.75, 1.0};
 
 /// The names of the files write_register_outputs writes (report.json, the completion marker, among them).
 std::vector<std::string> register_output_names();

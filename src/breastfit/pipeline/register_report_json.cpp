@@ -5,6 +5,7 @@
 #include "breastfit/fit/fit_summary_json.h"
 #include "breastfit/mesh/units.h"
 #include "breastfit/metrics/distance_stats_json.h"
+#include "breastfit/pipeline/provenance_json.h"
 #include "breastfit/transfer/breast_measurements_json.h"
 
 namespace breastfit::pipeline {
@@ -36,6 +37,10 @@ nlohmann::json report_json(const RegisterResult& r) {
   j["drawings"] = curves;
   j["breast_measurements"] = transfer::to_json(r.breasts);
   j["warnings"] = r.warnings;
+  if (r.provenance) {
+    j["provenance"] = provenance_json(*r.provenance);
+    j["run"] = run_json(*r.provenance);
+  }
   return j;
 }
 

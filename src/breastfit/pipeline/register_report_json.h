@@ -12,7 +12,8 @@ namespace breastfit::pipeline {
 ///  "table1": {"surface_mm", "surface_model_only_mm", "landmarks_mm" (metrics::to_json),
 ///             "landmark_errors_mm": {name: mm}},
 ///  "drawings": {name: {"closed", "points", "length_mm", "supported_fraction", "mean_model_to_scan_mm"}},
-///  "breast_measurements" (transfer::to_json), "warnings": [...]}.
+///  "breast_measurements" (transfer::to_json), "warnings": [...],
+///  "provenance" and "run" (provenance_json.h) when the result carries its provenance}.
 nlohmann::json report_json(const RegisterResult& r);
 
 }  // namespace breastfit::pipeline

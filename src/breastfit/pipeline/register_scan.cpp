@@ -33,6 +33,9 @@ RegisterResult register_scan(const RegisterRequest& req, const fit::IterationCal
   const std::shared_ptr<const model::RiggedModel> model_ptr =
       req.model ? req.model : std::make_shared<const model::RiggedModel>(model::load_default_template());
   const model::RiggedModel& model = *model_ptr;
+  if (model.landmarks.empty() && model.drawings.empty())
+    throw InvalidInput("the template '" + model.name +
+                       "' has no landmarks and no drawings: not a breastfit torso template (docs/TEMPLATE_FORMAT.md)");
   RegisterResult out;
   out.scan_name = req.scan_name;
   Timer phase;
@@ -40,6 +43,10 @@ RegisterResult register_scan(const RegisterRequest& req, const fit::IterationCal
   out.warnings = out.scan.warnings;
   fit::FitOptions options = req.options;
   if (out.scan.was_point_cloud) options.correspondences.reject_boundary = false;
+  if (req.provenance) {
+    out.provenance = req.provenance;
+    out.provenance->options = options;
+  }
 
   std::vector<std::pair<std::string, Vec3>> landmarks_mm;
   if (req.landmarks) landmarks_mm = prepare_landmarks(*req.landmarks, out.scan.units);

@@ -12,6 +12,7 @@
 #include "breastfit/mesh/landmarks.h"
 #include "breastfit/metrics/fit_errors.h"
 #include "breastfit/model/rigged_model.h"
+#include "breastfit/pipeline/provenance.h"
 #include "breastfit/pipeline/scan_input.h"
 #include "breastfit/transfer/breast_measurements.h"
 #include "breastfit/transfer/drawing_transfer.h"
@@ -29,6 +30,9 @@ struct RegisterRequest {
   std::string landmarks_name = "landmarks";    ///< for messages (the landmark file)
   std::shared_ptr<const model::RiggedModel> model;  ///< the template (nullptr: the shipped default)
   fit::FitOptions options;
+  /// What the command read and how it ran (report.json's provenance and run blocks); its
+  /// options are replaced by `options` (the effective ones). nullopt: no such blocks.
+  std::optional<Provenance> provenance;
 };
 
 struct RegisterResult {
@@ -48,6 +52,7 @@ struct RegisterResult {
   /// Wall time per phase: scan_preparation, index_build, the fit's (initialization, stage:<name>,
   /// final_state, surface_detail), transfer, measurements.
   std::vector<fit::PhaseTime> timings;
+  std::optional<Provenance> provenance;  ///< RegisterRequest::provenance with the effective options
 
   bool usable() const { return fit.summary.usable(); }
 };

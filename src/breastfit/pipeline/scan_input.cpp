@@ -51,6 +51,13 @@ PreparedScan prepare_scan(const TriangleMesh& scan, const std::string& name, std
       << ", not an upper torso (expected about 250-700 mm); wrong --units?";
     throw InvalidInput(s.str());
   }
+  if (extent_mm < kTorsoExtentMm[0] || extent_mm > kTorsoExtentMm[1]) {
+    std::ostringstream s;
+    s << name << ": the scan spans " << std::lround(extent_mm) << " mm (in " << mesh::units_name(out.units)
+      << "), " << (extent_mm < kTorsoExtentMm[0] ? "small" : "large")
+      << " for an adult upper torso (about 250-700 mm): check --units and what was scanned";
+    out.warnings.push_back(s.str());
+  }
   out.mesh_mm = scan;
   out.mesh_mm.V *= out.to_mm;
   out.mesh_mm.N.resize(0, 3);

@@ -1,6 +1,7 @@
 #pragma once
 /// \file A scan as the user gave it, made ready for registration: units resolved and converted to
 /// millimetres, checked to be an upper torso, point clouds turned into oriented splats.
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -19,11 +20,17 @@ struct PreparedScan {
   std::vector<std::string> warnings;
 };
 
+/// The extent (mm, largest side of the bounding box) of a plausible adult upper-torso scan: a
+/// scan outside it (but within 150–1500 mm) is kept with a warning — a 0.155 m bunny taken as
+/// 155 mm, a full-body scan.
+inline constexpr std::array<double, 2> kTorsoExtentMm{250.0, 1000.0};
+
 /// Converts `scan` (file units) to mm and validates it.
 /// \param name       used in error messages (the file name)
 /// \param requested  forced units, or nullopt to detect them from the extent
 /// \throws InvalidInput for an empty scan, non-finite coordinates, or an extent that is not an
-///         upper torso (150–1500 mm after conversion), each naming the file.
+///         upper torso (150–1500 mm after conversion), each naming the file; warns outside
+///         kTorsoExtentMm.
 PreparedScan prepare_scan(const TriangleMesh& scan, const std::string& name, std::optional<mesh::Units> requested);
 
 /// Landmarks converted to mm (declared units, else the scan's), checked for NaN.

@@ -110,4 +110,28 @@ void triangulate_polygon(const std::vector<Vec3>& corners, std::vector<Corner>& 
   }
 }
 
+void PolygonTriangulator::append(const std::vector<double>& V, const Index* corners,
+                                 std::size_t count, std::vector<Index>& tris) {
+  if (count < 3) return;
+  if (count == 3) {
+    if (corners[0] != corners[1] && corners[1] != corners[2] && corners[0] != corners[2]) {
+      tris.insert(tris.end(), corners, corners + 3);
+    }
+    return;
+  }
+  positions_.clear();
+  for (std::size_t k = 0; k < count; ++k) {
+    const auto at = 3 * static_cast<std::size_t>(corners[k]);
+    positions_.emplace_back(V[at], V[at + 1], V[at + 2]);
+  }
+  triangulate_polygon(positions_, triangles_);
+  for (const auto& c : triangles_) {
+    const Index a = corners[c[0]], b = corners[c[1]], d = corners[c[2]];
+    if (a == b || b == d || a == d) continue;
+    tris.push_back(a);
+    tris.push_back(b);
+    tris.push_back(d);
+  }
+}
+
 }  // namespace breastfit::io::detail

@@ -23,4 +23,20 @@ namespace breastfit::io::detail {
 void triangulate_polygon(const std::vector<Vec3>& corners,
                          std::vector<std::array<std::size_t, 3>>& triangles);
 
+/// Triangulates index polygons against a flat vertex array (x0 y0 z0 x1 ...), the way the PLY
+/// and VTK readers turn their faces into triangles; keeps its buffers from face to face.
+class PolygonTriangulator {
+ public:
+  /// Appends the triangles of the polygon `corners[0..count)` to `tris` (flat, 3 indices per
+  /// triangle) as triangulate_polygon cuts it (fan when convex, ear clipping when concave),
+  /// skipping triangles that repeat a vertex index. Every corner must index `V` (3 doubles per
+  /// vertex); fewer than 3 corners append nothing.
+  void append(const std::vector<double>& V, const Index* corners, std::size_t count,
+              std::vector<Index>& tris);
+
+ private:
+  std::vector<Vec3> positions_;
+  std::vector<std::array<std::size_t, 3>> triangles_;
+};
+
 }  // namespace breastfit::io::detail

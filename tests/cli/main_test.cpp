@@ -1,0 +1,145 @@
+// The command line as a whole (apps/cli/main.cpp and every subcommand it registers): each
+// subcommand's --help is walked, found from `breastfit --help` itself (nested subcommands
+// included), so commands added later are covered without touching this test.
+#include <gtest/gtest.h>
+
+#include <map>
+#include <utility>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "support/test_paths.h"
+
+namespace breastfit {
+namespace {
+
+/// One option or positional line of a CLI11 help text: its names and description.
+struct HelpOption {
+  std::vector<std::string> names;  // "-o", "--out", or a positional's name
+  std::string description;
+};
+
+/// The help text's sections: "Subcommands" names, "Options" and "Positionals" entries.
+struct Help {
+  std::vector<std::string> subcommands;
+  std::vector<HelpOption> options;
+};
+
+std::string trim(const std::string& s) {
+  const auto b = s.find_first_not_of(' ');
+  const auto e = s.find_last_not_of(' ');
+  return b == std::string::npos ? "" : s.substr(b, e - b + 1);
+}
+
+/// Splits an entry line (without its indentation) into its head (names and type) and the
+/// description after the first run of two or more spaces (empty when on the next line).
+std::pair<std::string, std::string> split_entry(const std::string& body) {
+  const auto gap = body.find("  ");
+  return {body.substr(0, gap), gap == std::string::npos ? "" : trim(body.substr(gap))};
+}
+
+Help parse_help(const std::string& text) {
+  Help h;
+  std::istringstream in(text);
+  std::string line, section;
+  bool group_description = false;  // the line after "[Option Group: ...]" describes the group
+  while (std::getline(in, line)) {
+    const std::string t = trim(line);
+    if (t.empty()) continue;
+    if (line[0] != ' ') {
+      if (t.rfind("[Option Group:", 0) == 0) {
+        section = "Options";
+        group_description = true;
+      } else if (t.back() == ':') {
+        section = t.substr(0, t.size() - 1);
+      }
+      continue;
+    }
+    if (t == "Options:") {
+      group_description = false;
+      continue;
+    }
+    const std::size_t indent = line.find_first_not_of(' ');
+    if (section == "Subcommands" && indent == 2) {
+      h.subcommands.push_back(t.substr(0, t.find(' ')));
+    } else if ((section == "Options" && t[0] == '-') || (section == "Positionals" && indent == 2)) {
+      const auto [head, description] = split_entry(t);
+      HelpOption o;
+      std::stringstream ns(head.substr(0, head.find(' ')));
+      for (std::string n; std::getline(ns, n, ',');) o.names.push_back(n);
+      o.description = description;
+      h.options.push_back(o);
+      group_description = false;
+    } else if (group_description) {
+      group_description = false;  // the group's own description
+    } else if (!h.options.empty() && h.options.back().description.empty()) {
+      h.options.back().description = t;  // a long head puts the description on the next line
+    }
+  }
+  return h;
+}
+
+/// Every subcommand path ("register", "template info", ...) with its parsed help.
+std::map<std::string, Help> walk(const std::string& path) {
+  std::string text;
+  EXPECT_EQ(test::run_cli(path + " --help", &text), 0) << path << " --help:\n" << text;
+  std::map<std::string, Help> out;
+  const Help h = parse_help(text);
+  out[path] = h;
+  for (const std::string& sub : h.subcommands) {
+    const auto more = walk(path.empty() ? sub : path + " " + sub);
+    out.insert(more.begin(), more.end());
+  }
+  return out;
+}
+
+TEST(Main, EveryHelpExitsZeroAndDescribesEveryOption) {
+  if (test::cli_path().empty()) GTEST_SKIP() << "CLI not built";
+  const auto helps = walk("");
+  EXPECT_GE(helps.size(), 11u);  // the top level and at least ten subcommands
+  ASSERT_TRUE(helps.count("register"));
+  bool grouped = false;  // options inside "[Option Group: ...]" are parsed too
+  for (const HelpOption& o : helps.at("register").options) grouped = grouped || o.names.back() == "--lambda-data";
+  EXPECT_TRUE(grouped);
+  for (const auto& [path, help] : helps) {
+    for (const HelpOption& o : help.options) {
+      EXPECT_FALSE(o.description.empty()) << "'" << path << "': option " << o.names.front() << " has no description";
+    }
+  }
+}
+
+TEST(Main, SameFlagsMeanTheSameInEverySubcommand) {
+  if (test::cli_path().empty()) GTEST_SKIP() << "CLI not built";
+  const auto helps = walk("");
+  // One meaning per short letter across the whole command line, and the shared long options
+  // always with their short letter.
+  std::map<std::string, std::set<std::string>> long_of_short;  // "-o" -> {"--out"}
+  const std::map<std::string, std::string> shared{
+      {"--out", "-o"}, {"--quiet", "-q"}, {"--template", "-t"}, {"--landmarks", "-l"}};
+  for (const auto& [path, help] : helps) {
+    for (const HelpOption& o : help.options) {
+      std::string short_name, long_name;
+      for (const std::string& n : o.names) {
+        if (n.rfind("--", 0) == 0) {
+          long_name = n;
+        } else if (n.size() == 2 && n[0] == '-') {
+          short_name = n;
+        }
+      }
+      if (!short_name.empty() && !long_name.empty()) long_of_short[short_name].insert(long_name);
+      const auto it = shared.find(long_name);
+      if (it != shared.end()) {
+        EXPECT_EQ(short_name, it->second) << "'" << path << "': " << long_name << " should also be " << it->second;
+      }
+      EXPECT_NE(long_name, "--output") << "'" << path << "': use --out";
+    }
+  }
+  for (const auto& [short_name, longs] : long_of_short) {
+    EXPECT_EQ(longs.size(), 1u) << short_name << " means " << testing::PrintToString(longs);
+  }
+}
+
+}  // namespace
+}  // namespace breastfit
