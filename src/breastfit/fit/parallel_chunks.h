@@ -9,8 +9,10 @@
 
 namespace breastfit::fit {
 
-/// The threads to use for `requested`: itself when > 0, otherwise all the cores OpenMP sees
-/// (OMP_NUM_THREADS when set, else the processors). 1 when built without OpenMP.
+/// The threads to use for `requested`: itself when > 0. Otherwise (0: "all cores") OMP_NUM_THREADS
+/// when set, else the cores not already busy: the processors minus the whole part of the 1-minute
+/// load average, at least 1 (on a machine whose cores are all taken by other work, threads that
+/// wait for each other at every loop's end are slower than one). 1 when built without OpenMP.
 int resolve_threads(int requested);
 
 /// Number of chunks of size `chunk_size` (> 0) covering [0, n).
