@@ -27,8 +27,9 @@ BIN = os.environ.get("BREASTFIT_BIN", os.path.join(HERE, "..", "build", "bin", "
 
 
 def timed_register(case, template=None, threads=None, repeat=3):
-    """Median wall seconds and peak RSS (MB) of `register --no-report-html`, and report.json."""
-    walls, rss = [], []
+    """Median wall seconds, CPU seconds (user + system) and peak RSS (MB) of
+    `register --no-report-html`, and the last run's report.json."""
+    walls, cpus, rss = [], [], []
     report = None
     for _ in range(repeat):
         with tempfile.TemporaryDirectory() as out:
@@ -44,10 +45,12 @@ def timed_register(case, template=None, threads=None, repeat=3):
                 sys.exit("perf_scaling.py: register failed on %s: %s" % (case, p.stderr.strip()[-500:]))
             m = re.search(r"Elapsed \(wall clock\) time \(h:mm:ss or m:ss\): (?:(\d+):)?(\d+):([\d.]+)", p.stderr)
             walls.append(int(m.group(1) or 0) * 3600 + int(m.group(2)) * 60 + float(m.group(3)))
+            cpus.append(sum(float(re.search(r"%s time \(seconds\): ([\d.]+)" % k, p.stderr).group(1))
+                            for k in ("User", "System")))
             rss.append(int(re.search(r"Maximum resident set size \(kbytes\): (\d+)", p.stderr).group(1)) / 1024.0)
             with open(os.path.join(out, "fit", "report.json")) as f:
                 report = json.load(f)
-    return statistics.median(walls), statistics.median(rss), report
+    return statistics.median(walls), statistics.median(cpus), statistics.median(rss), report
 
 
 def scan_faces(case):
@@ -81,9 +84,9 @@ def run_scans(a):
             subprocess.run([BIN, "synth", "--out", case, "--seed", "7", "--subdivisions", str(k), "--max-faces",
                             "5000000", "--target-edge-mm", "0.05", "--force", "--quiet"], check=True)
         load_before = loadavg()
-        wall, rss, report = timed_register(case, threads=a.threads, repeat=a.repeat)
-        row = {"subdivisions": k, "scan_triangles": scan_faces(case), "wall_s": wall, "peak_rss_mb": rss,
-               "time_s": report["time_s"], "timings_s": report["timings_s"], "load": load_before}
+        wall, cpu, rss, report = timed_register(case, threads=a.threads, repeat=a.repeat)
+        row = {"subdivisions": k, "scan_triangles": scan_faces(case), "wall_s": wall, "cpu_s": cpu,
+               "peak_rss_mb": rss, "time_s": report["time_s"], "timings_s": report["timings_s"], "load": load_before}
         print(json.dumps(row))
         data["scans"] = [r for r in data["scans"] if r["subdivisions"] != k] + [row]
     data["scans"].sort(key=lambda r: r["scan_triangles"])
@@ -96,8 +99,8 @@ def run_templates(a):
         info = subprocess.run([BIN, "template", "info", t], capture_output=True, text=True, check=True).stdout
         vertices = int(re.search(r"(\d+) vertices", info).group(1))
         load_before = loadavg()
-        wall, rss, report = timed_register(a.case, template=t, threads=a.threads, repeat=a.repeat)
-        row = {"template": os.path.basename(t), "template_vertices": vertices, "wall_s": wall,
+        wall, cpu, rss, report = timed_register(a.case, template=t, threads=a.threads, repeat=a.repeat)
+        row = {"template": os.path.basename(t), "template_vertices": vertices, "wall_s": wall, "cpu_s": cpu,
                "peak_rss_mb": rss, "time_s": report["time_s"], "load": load_before}
         print(json.dumps(row))
         data["templates"] = [r for r in data["templates"] if r["template"] != row["template"]] + [row]
@@ -111,28 +114,25 @@ def plot(a):
     import matplotlib.pyplot as plt
     data = load(a.out)
     fig, axes = plt.subplots(1, 2, figsize=(11, 4.2))
-    s = data["scans"]
-    if s:
-        x = [r["scan_triangles"] / 1e6 for r in s]
-        ax = axes[0]
-        ax.loglog(x, [r["wall_s"] for r in s], "o-", label="register, wall (s)")
-        ax.loglog(x, [r["time_s"] for r in s], "s--", label="time_s: fit incl. index (s)")
-        ax.loglog(x, [r["peak_rss_mb"] / 1000 for r in s], "^-", label="peak memory (GB)")
-        ax.set_xlabel("scan triangles (millions)")
-        ax.set_title("vs scan size (default template)")
+
+    def panel(ax, rows, x, xlabel, title):
+        if not rows:
+            return
+        ax.loglog(x, [r["wall_s"] for r in rows], "o-", label="register --no-report-html, wall (s)")
+        ax.loglog(x, [r["cpu_s"] for r in rows], "d-", label="register, CPU user+system (s)")
+        ax.loglog(x, [r["peak_rss_mb"] / 1000 for r in rows], "^-", label="peak memory (GB)")
+        for xi, r in zip(x, rows):
+            ax.annotate("load %.0f" % r["load"], (xi, r["wall_s"]), fontsize=7, textcoords="offset points",
+                        xytext=(4, 4))
+        ax.set_xlabel(xlabel)
+        ax.set_title(title)
         ax.grid(True, which="both", alpha=0.3)
         ax.legend(fontsize=8)
-    t = data["templates"]
-    if t:
-        x = [r["template_vertices"] for r in t]
-        ax = axes[1]
-        ax.loglog(x, [r["wall_s"] for r in t], "o-", label="register, wall (s)")
-        ax.loglog(x, [r["time_s"] for r in t], "s--", label="time_s: fit incl. index (s)")
-        ax.loglog(x, [r["peak_rss_mb"] / 1000 for r in t], "^-", label="peak memory (GB)")
-        ax.set_xlabel("template vertices")
-        ax.set_title("vs template resolution (one bench-like scan)")
-        ax.grid(True, which="both", alpha=0.3)
-        ax.legend(fontsize=8)
+
+    s, t = data["scans"], data["templates"]
+    panel(axes[0], s, [r["scan_triangles"] / 1e6 for r in s], "scan triangles (millions)",
+          "vs scan size (default template, 2070 vertices)")
+    panel(axes[1], t, [r["template_vertices"] for r in t], "template vertices", "vs template resolution (bench p0_standing)")
     fig.tight_layout()
     fig.savefig(a.image, dpi=110)
     print("wrote", a.image)

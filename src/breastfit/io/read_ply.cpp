@@ -8,6 +8,7 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "breastfit/core/errors.h"
@@ -648,9 +649,12 @@ TriangleMesh read_body(Source& source, const PlyHeader& header, const std::strin
     if (&e == vertex) {
       vertices = read_vertices(source, e, name);
     } else if (&e == face || &e == strips) {
-      const std::vector<Index> more = read_index_lists(
+      std::vector<Index> more = read_index_lists(
           source, e, vertex->count, &e == face ? IndexLists::Polygons : IndexLists::Strips, name);
-      tris.insert(tris.end(), more.begin(), more.end());
+      if (tris.empty())
+        tris = std::move(more);  // the usual single face element: no copy
+      else
+        tris.insert(tris.end(), more.begin(), more.end());
     } else {
       skip_element(source, e, name);
     }
