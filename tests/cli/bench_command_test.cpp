@@ -18,12 +18,13 @@ namespace fs = std::filesystem;
 
 TEST(BenchCommand, PrintsSolverAndWholeRunTimesPerCaseAndTheirMedians) {
   if (test::cli_path().empty()) GTEST_SKIP() << "CLI not built";
-  const fs::path cases = test::temp_dir() / "cases";
+  const fs::path tmp = test::temp_dir();  // (a second call would empty it)
+  const fs::path cases = tmp / "cases";
   std::string out;
   ASSERT_EQ(test::run_cli("synth --quiet --seed 4 --out '" + (cases / "c4").string() + "'", &out), 0) << out;
   nlohmann::json runs[2];
   for (int threads : {1, 2}) {
-    const fs::path json = test::temp_dir() / ("bench" + std::to_string(threads) + ".json");
+    const fs::path json = tmp / ("bench" + std::to_string(threads) + ".json");
     ASSERT_EQ(test::run_cli("bench '" + cases.string() + "' -n 2 --threads " + std::to_string(threads) +
                                 " --json '" + json.string() + "'",
                             &out),
