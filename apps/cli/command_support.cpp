@@ -32,6 +32,9 @@ void add_fit_flags(CLI::App& sub, FitFlags& f) {
   g->add_option("--max-landmarks", f.max_landmarks, "use only the first N landmarks (paper order)");
   g->add_flag("--no-surface-detail", f.no_surface_detail,
               "the paper's model only: no smooth normal offsets fitted after the parameters");
+  sub.add_option("--threads", f.threads,
+                 "threads for the registration (default 0: all cores); the results do not depend on it")
+      ->check(CLI::Range(0, 1024));
 }
 
 fit::FitOptions load_fit_options(const std::string& config_path, const FitFlags& f) {
@@ -56,6 +59,7 @@ fit::FitOptions load_fit_options(const std::string& config_path, const FitFlags&
   if (f.max_blendshapes) o.max_blendshapes = *f.max_blendshapes;
   if (f.max_landmarks) o.max_landmarks = *f.max_landmarks;
   if (f.no_surface_detail) o.detail.enabled = false;
+  if (f.threads) o.threads = *f.threads;
   o.validate();
   return o;
 }

@@ -26,6 +26,7 @@ struct FitFlags {
   std::map<std::string, std::optional<double>> lambdas;
   std::optional<int> max_blendshapes, max_landmarks;
   bool no_surface_detail = false;
+  std::optional<int> threads;  ///< --threads (FitOptions::threads)
 };
 
 void add_fit_flags(CLI::App& sub, FitFlags& flags);

@@ -31,7 +31,8 @@ struct SynthArgs {
   bool force = false;
   bool quiet = false;
   std::optional<double> noise_mm, lowfreq_noise_mm, rotation_deg, translation_m, landmark_noise_mm, shape_amplitude;
-  std::optional<int> holes, fragments, azimuths, bumps, subdivisions;
+  std::optional<int> holes, fragments, azimuths, bumps, subdivisions, max_faces;
+  std::optional<double> target_edge_mm;
   bool no_table = false;
 };
 
@@ -61,6 +62,8 @@ synth::SynthOptions make_options(const SynthArgs& a, std::uint64_t seed, synth::
   if (a.azimuths) o.scanner.n_azimuth = *a.azimuths;
   if (a.bumps) o.deformation.n_bumps = *a.bumps;
   if (a.subdivisions) o.refinement.max_steps = *a.subdivisions;
+  if (a.max_faces) o.refinement.max_faces = *a.max_faces;
+  if (a.target_edge_mm) o.refinement.target_edge_mm = *a.target_edge_mm;
   if (a.no_table) o.artifacts.table_strip = false;
   o.validate();
   return o;
@@ -130,6 +133,10 @@ void register_synth(CLI::App& app, int& exit_code) {
   sub->add_option("--azimuths", args->azimuths, "cameras per ring (default 12)");
   sub->add_option("--bumps", args->bumps, "smooth deformation bumps outside the model (default 4)");
   sub->add_option("--subdivisions", args->subdivisions, "max subdivision steps of the truth (default 3)");
+  sub->add_option("--max-faces", args->max_faces,
+                  "never subdivide the truth beyond this many triangles (default 400000; dense scans for scaling)");
+  sub->add_option("--target-edge-mm", args->target_edge_mm,
+                  "subdivide the truth until its median edge is at most this, mm (default 2.5)");
   sub->add_flag("--no-table", args->no_table, "supine: no table strips");
   sub->callback([args, &exit_code] {
     run(*args);

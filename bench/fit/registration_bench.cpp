@@ -1,10 +1,11 @@
 // Benchmarks of the registration's parts and of a whole fit, on a synthetic case made from the
 // shipped default template (no external data): scan index build, correspondences, normal
 // equations assembly, one LM iteration, the surface-detail layer, and the full registration (what report.json's time_s
-// measures).
+// measures); the parallel parts with 1 and 2 threads (the last argument).
 #include <benchmark/benchmark.h>
 
 #include <memory>
+#include <string>
 
 #include "breastfit/fit/stage_minimizer.h"
 #include "breastfit/fit/problem.h"
@@ -43,9 +44,9 @@ struct Fixture {
     scan = std::make_unique<fit::ScanTarget>(scan_mm, options.correspondences.reverse_samples);
   }
 
-  /// A problem at the landmark-initialised pose.
-  std::unique_ptr<fit::Problem> problem() {
-    auto p = std::make_unique<fit::Problem>(model, *scan, options, targets);
+  /// A problem at the landmark-initialised pose (`o`: its options, kept by reference).
+  std::unique_ptr<fit::Problem> problem(const fit::FitOptions& o) {
+    auto p = std::make_unique<fit::Problem>(model, *scan, o, targets);
     p->evaluator().set_params(start);
     return p;
   }
@@ -66,19 +67,30 @@ void BM_ScanIndexBuild(benchmark::State& state) {
 }
 BENCHMARK(BM_ScanIndexBuild)->Unit(benchmark::kMillisecond);
 
+// Options with `threads` threads (fit/parallel_chunks.h).
+fit::FitOptions with_threads(const fit::FitOptions& o, int64_t threads) {
+  fit::FitOptions out = o;
+  out.threads = static_cast<int>(threads);
+  return out;
+}
+
+// Args: (with the reverse term, threads).
 void BM_Correspondences(benchmark::State& state) {
   auto& f = fixture();
-  const auto problem_ptr = f.problem();
+  const fit::FitOptions options = with_threads(f.options, state.range(1));
+  const auto problem_ptr = f.problem(options);
   fit::Problem& problem = *problem_ptr;
   for (auto _ : state) problem.update_correspondences(20.0, 1, state.range(0) != 0);
   state.counters["model_vertices"] = f.model.num_vertices();
-  state.SetLabel(state.range(0) ? "model->scan + scan->model" : "model->scan");
+  state.SetLabel(std::string(state.range(0) ? "model->scan + scan->model" : "model->scan") + ", " +
+                 std::to_string(state.range(1)) + " threads");
 }
-BENCHMARK(BM_Correspondences)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Correspondences)->Args({0, 1})->Args({1, 1})->Args({0, 2})->Args({1, 2})->Unit(benchmark::kMillisecond);
 
 void BM_NormalEquationsAssembly(benchmark::State& state) {
   auto& f = fixture();
-  const auto problem_ptr = f.problem();
+  const fit::FitOptions options = with_threads(f.options, state.range(0));
+  const auto problem_ptr = f.problem(options);
   fit::Problem& problem = *problem_ptr;
   problem.update_correspondences(20.0, 1, true);
   fit::NormalEquations eq(problem.evaluator().layout().num_params());
@@ -90,21 +102,23 @@ void BM_NormalEquationsAssembly(benchmark::State& state) {
   }
   state.counters["params"] = eq.size();
   state.counters["pairs"] = problem.pairs().size();
+  state.counters["threads"] = static_cast<double>(state.range(0));
 }
-BENCHMARK(BM_NormalEquationsAssembly)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_NormalEquationsAssembly)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
 
 void BM_OneLmIteration(benchmark::State& state) {
   auto& f = fixture();
   fit::StageOptions stage{"bench", true, true, true, 1, 1};
+  const fit::FitOptions options = with_threads(f.options, state.range(0));
   for (auto _ : state) {
-    const auto problem = f.problem();
+    const auto problem = f.problem(options);
     model::PoseParams p = f.start;
     fit::FitSummary s;
     fit::minimize_stages(*problem, {stage}, p, s);
     benchmark::DoNotOptimize(p.global.scale);
   }
 }
-BENCHMARK(BM_OneLmIteration)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_OneLmIteration)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
 
 void BM_SurfaceDetail(benchmark::State& state) {
   auto& f = fixture();
@@ -114,26 +128,27 @@ void BM_SurfaceDetail(benchmark::State& state) {
   int kept = 0;
   for (auto _ : state) {
     const auto d = fit::fit_surface_detail(fitted.vertices, f.model.rest.F, *f.scan, f.options.correspondences,
-                                           f.options.detail);
+                                           f.options.detail, static_cast<int>(state.range(0)));
     kept = d.kept;
     benchmark::DoNotOptimize(d.offsets.data());
   }
   state.counters["kept"] = kept;
 }
-BENCHMARK(BM_SurfaceDetail)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_SurfaceDetail)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
 
 void BM_FullRegistration(benchmark::State& state) {
   auto& f = fixture();
   int iterations = 0;
+  const fit::FitOptions options = with_threads(fit::FitOptions{}, state.range(0));
   for (auto _ : state) {
-    fit::ScanTarget scan(f.scan_mm, fit::FitOptions{}.correspondences.reverse_samples);  // index build included
-    const auto r = fit::register_template(f.model, scan, fit::match_landmarks(f.model, f.landmarks_mm), {});
+    fit::ScanTarget scan(f.scan_mm, options.correspondences.reverse_samples);  // index build included
+    const auto r = fit::register_template(f.model, scan, fit::match_landmarks(f.model, f.landmarks_mm), options);
     iterations = static_cast<int>(r.summary.iterations.size());
     benchmark::DoNotOptimize(r.vertices.data());
   }
   state.counters["lm_iterations"] = iterations;
 }
-BENCHMARK(BM_FullRegistration)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_FullRegistration)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

@@ -2,7 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdint>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <string>
 
@@ -136,6 +139,59 @@ TEST(DrawingOutputs, PaintedScanColoursABandAroundTheCurves) {
   EXPECT_TRUE(back.C == painted.C);
   EXPECT_NEAR(back.V(0, 0), -0.1, 1e-6);
   EXPECT_THROW(paint_drawings(scan, sample_curves(), PaintOptions{.width_mm = 0}), InvalidInput);
+}
+
+// Distance from q to the polyline (closed: with the last segment back to the start).
+double polyline_distance(const Points& P, bool closed, const Vec3& q) {
+  double best = std::numeric_limits<double>::infinity();
+  const Index n = P.rows();
+  for (Index i = 0; i + 1 < n + (closed ? 1 : 0); ++i) {
+    const Vec3 a = P.row(i).transpose(), b = P.row((i + 1) % n).transpose();
+    const double t = std::clamp((q - a).dot(b - a) / std::max((b - a).squaredNorm(), 1e-300), 0.0, 1.0);
+    best = std::min(best, (a + t * (b - a) - q).norm());
+  }
+  return best;
+}
+
+// Points scattered in 3D around the curves (off the coarse grid's cells and across their
+// borders): painted exactly when near a curve, whatever cell they fall in.
+TEST(DrawingOutputs, PaintsEveryPointNearACurveAndNoFarOne) {
+  const auto curves = sample_curves();
+  TriangleMesh cloud;
+  const int n = 20000;
+  cloud.V.resize(n, 3);
+  std::uint64_t state = 12345;
+  const auto uniform = [&state](double lo, double hi) {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return lo + (hi - lo) * static_cast<double>(state >> 11) / 9007199254740992.0;
+  };
+  for (int i = 0; i < n; ++i) {
+    if (i % 4 == 0) {  // anywhere around the curves
+      cloud.V.row(i) << uniform(-40, 110), uniform(-40, 40), uniform(-5, 110);
+    } else {  // within a few mm of a curve point (the band's edge, across grid cells)
+      const Points& P = curves[i % 2].points;
+      const Index k = static_cast<Index>(uniform(0, static_cast<double>(P.rows()) - 1e-9));
+      cloud.V.row(i) = P.row(k) + Eigen::RowVector3d(uniform(-5, 5), uniform(-5, 5), uniform(-5, 5));
+    }
+  }
+  cloud.F.resize(1, 3);
+  cloud.F << 0, 1, 2;
+  PaintOptions o;
+  o.width_mm = 3.0;
+  const TriangleMesh painted = paint_drawings(cloud, curves, o);
+  int near = 0;
+  for (Index v = 0; v < n; ++v) {
+    const Vec3 q = cloud.V.row(v).transpose();
+    double d = std::numeric_limits<double>::infinity();
+    for (const auto& c : curves) d = std::min(d, polyline_distance(c.points, c.closed, q));
+    const bool skin = painted.C(v, 0) == o.skin[0] && painted.C(v, 1) == o.skin[1] && painted.C(v, 2) == o.skin[2];
+    if (d <= 0.5 * o.width_mm) {
+      EXPECT_FALSE(skin) << "vertex " << v << " at " << d << " mm";
+      ++near;
+    }
+    if (d > 0.5 * o.width_mm + 0.5) EXPECT_TRUE(skin) << "vertex " << v << " at " << d << " mm";
+  }
+  EXPECT_GT(near, 1000);
 }
 
 TEST(DrawingOutputs, MarkupsOfTransferredCurvesLoadBackIdentically) {

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <utility>
 
+#include "breastfit/fit/parallel_chunks.h"
 #include "breastfit/mesh/normals.h"
 #include "breastfit/spatial/closest_point_index.h"
 
@@ -22,44 +23,83 @@ double robust_weight(RobustKernel kernel, double r, double sigma) {
   return 1.0;
 }
 
-std::vector<Correspondence> find_correspondences(const Points& V, const Points& N, const ScanTarget& scan,
-                                                 const CorrespondenceOptions& o, double max_distance_mm,
-                                                 int stride, CorrespondenceStats* stats, std::vector<Index>* hints) {
-  if (hints && static_cast<Index>(hints->size()) != V.rows()) hints->assign(V.rows(), -1);
-  const double cos_limit = std::cos(o.max_normal_angle_deg * M_PI / 180.0);
+namespace {
+
+// Queries per chunk of the parallel searches (fixed: the output does not depend on the threads).
+constexpr Index kQueryChunk = 64;
+
+// One chunk's pairs and counts; chunks are concatenated and summed in chunk order.
+template <class Pair>
+struct ChunkResult {
+  std::vector<Pair> pairs;
+  CorrespondenceStats stats;
+};
+
+template <class Pair>
+std::vector<Pair> concatenate(std::vector<ChunkResult<Pair>>& chunks, double max_distance_mm,
+                              CorrespondenceStats* stats) {
   CorrespondenceStats st;
   st.max_distance_mm = max_distance_mm;
-  std::vector<Correspondence> out;
-  out.reserve(V.rows() / stride + 1);
-  for (Index i = 0; i < V.rows(); i += stride) {
-    ++st.candidates;
-    const Vec3 q = V.row(i).transpose();
-    const auto m = scan.match(q, max_distance_mm, hints ? &(*hints)[i] : nullptr);
-    if (!m) {
-      ++st.rejected_distance;
-      continue;
-    }
-    if (o.reject_boundary && m->on_boundary) {
-      ++st.rejected_boundary;
-      continue;
-    }
-    const Vec3 n = N.row(i).transpose();
-    if (n.dot(m->normal) < cos_limit) {
-      ++st.rejected_normal;
-      continue;
-    }
-    Correspondence c;
-    c.vertex = i;
-    c.target = m->point;
-    c.normal = m->normal;
-    const double r = std::sqrt((1.0 - o.point_to_point_weight) * std::pow(c.normal.dot(q - c.target), 2) +
-                               o.point_to_point_weight * (q - c.target).squaredNorm());
-    c.weight = robust_weight(o.kernel, r, o.kernel_scale_mm);
-    out.push_back(c);
-    ++st.kept;
+  size_t total = 0;
+  for (const auto& c : chunks) total += c.pairs.size();
+  std::vector<Pair> out;
+  out.reserve(total);
+  for (auto& c : chunks) {
+    out.insert(out.end(), c.pairs.begin(), c.pairs.end());
+    st.candidates += c.stats.candidates;
+    st.kept += c.stats.kept;
+    st.rejected_distance += c.stats.rejected_distance;
+    st.rejected_boundary += c.stats.rejected_boundary;
+    st.rejected_normal += c.stats.rejected_normal;
   }
   if (stats) *stats = st;
   return out;
+}
+
+}  // namespace
+
+std::vector<Correspondence> find_correspondences(const Points& V, const Points& N, const ScanTarget& scan,
+                                                 const CorrespondenceOptions& o, double max_distance_mm,
+                                                 int stride, CorrespondenceStats* stats, std::vector<Index>* hints,
+                                                 int threads) {
+  if (hints && static_cast<Index>(hints->size()) != V.rows()) hints->assign(V.rows(), -1);
+  const double cos_limit = std::cos(o.max_normal_angle_deg * M_PI / 180.0);
+  const Index candidates = V.rows() > 0 ? (V.rows() - 1) / stride + 1 : 0;  // vertices 0, stride, 2·stride, …
+  std::vector<ChunkResult<Correspondence>> chunks(static_cast<size_t>(num_chunks(candidates, kQueryChunk)));
+  for_each_chunk(candidates, kQueryChunk, threads, [&](Index chunk, Index begin, Index end) {
+    auto& out = chunks[static_cast<size_t>(chunk)].pairs;
+    CorrespondenceStats& st = chunks[static_cast<size_t>(chunk)].stats;
+    out.reserve(static_cast<size_t>(end - begin));
+    for (Index k = begin; k < end; ++k) {
+      const Index i = k * stride;
+      ++st.candidates;
+      const Vec3 q = V.row(i).transpose();
+      const auto m = scan.match(q, max_distance_mm, hints ? &(*hints)[i] : nullptr);
+      if (!m) {
+        ++st.rejected_distance;
+        continue;
+      }
+      if (o.reject_boundary && m->on_boundary) {
+        ++st.rejected_boundary;
+        continue;
+      }
+      const Vec3 n = N.row(i).transpose();
+      if (n.dot(m->normal) < cos_limit) {
+        ++st.rejected_normal;
+        continue;
+      }
+      Correspondence c;
+      c.vertex = i;
+      c.target = m->point;
+      c.normal = m->normal;
+      const double r = std::sqrt((1.0 - o.point_to_point_weight) * std::pow(c.normal.dot(q - c.target), 2) +
+                                 o.point_to_point_weight * (q - c.target).squaredNorm());
+      c.weight = robust_weight(o.kernel, r, o.kernel_scale_mm);
+      out.push_back(c);
+      ++st.kept;
+    }
+  });
+  return concatenate(chunks, max_distance_mm, stats);
 }
 
 std::vector<ReverseCorrespondence> find_reverse_correspondences(const Points& V, const Triangles& F,
@@ -67,7 +107,7 @@ std::vector<ReverseCorrespondence> find_reverse_correspondences(const Points& V,
                                                                 const CorrespondenceOptions& o,
                                                                 double max_distance_mm,
                                                                 CorrespondenceStats* stats,
-                                                                std::vector<Index>* hints) {
+                                                                std::vector<Index>* hints, int threads) {
   const double cos_limit = std::cos(o.max_normal_angle_deg * M_PI / 180.0);
   TriangleMesh posed;
   posed.V = V;
@@ -76,42 +116,43 @@ std::vector<ReverseCorrespondence> find_reverse_correspondences(const Points& V,
   const Points& S = scan.sample_points();
   const Points SN = scan.sample_normals();
   if (hints && static_cast<Index>(hints->size()) != S.rows()) hints->assign(S.rows(), -1);
-  CorrespondenceStats st;
-  st.max_distance_mm = max_distance_mm;
-  std::vector<ReverseCorrespondence> out;
-  out.reserve(S.rows());
-  for (Index s = 0; s < S.rows(); ++s) {
-    ++st.candidates;
-    const Vec3 p = S.row(s).transpose();
-    Index* hint = hints ? &(*hints)[s] : nullptr;
-    const auto cp = hint && *hint >= 0 ? index.closest_within(p, max_distance_mm, *hint)
-                                       : index.closest_within(p, max_distance_mm);
-    if (cp && hint) *hint = cp->face;
-    if (!cp) {
-      ++st.rejected_distance;
-      continue;
+  std::vector<ChunkResult<ReverseCorrespondence>> chunks(static_cast<size_t>(num_chunks(S.rows(), kQueryChunk)));
+  for_each_chunk(S.rows(), kQueryChunk, threads, [&](Index chunk, Index begin, Index end) {
+    auto& out = chunks[static_cast<size_t>(chunk)].pairs;
+    CorrespondenceStats& st = chunks[static_cast<size_t>(chunk)].stats;
+    out.reserve(static_cast<size_t>(end - begin));
+    for (Index s = begin; s < end; ++s) {
+      ++st.candidates;
+      const Vec3 p = S.row(s).transpose();
+      Index* hint = hints ? &(*hints)[s] : nullptr;
+      const auto cp = hint && *hint >= 0 ? index.closest_within(p, max_distance_mm, *hint)
+                                         : index.closest_within(p, max_distance_mm);
+      if (cp && hint) *hint = cp->face;
+      if (!cp) {
+        ++st.rejected_distance;
+        continue;
+      }
+      if (cp->on_boundary) {
+        ++st.rejected_boundary;
+        continue;
+      }
+      const Vec3 n = SN.row(s).transpose();
+      if (index.smooth_normal(*cp).dot(n) < cos_limit) {
+        ++st.rejected_normal;
+        continue;
+      }
+      ReverseCorrespondence c;
+      c.source = p;
+      c.normal = n;
+      c.model_point.face = cp->face;
+      c.model_point.bary = cp->bary;
+      const double r = std::abs(n.dot(cp->point - p));
+      c.weight = robust_weight(o.kernel, r, o.kernel_scale_mm);
+      out.push_back(c);
+      ++st.kept;
     }
-    if (cp->on_boundary) {
-      ++st.rejected_boundary;
-      continue;
-    }
-    const Vec3 n = SN.row(s).transpose();
-    if (index.smooth_normal(*cp).dot(n) < cos_limit) {
-      ++st.rejected_normal;
-      continue;
-    }
-    ReverseCorrespondence c;
-    c.source = p;
-    c.normal = n;
-    c.model_point.face = cp->face;
-    c.model_point.bary = cp->bary;
-    const double r = std::abs(n.dot(cp->point - p));
-    c.weight = robust_weight(o.kernel, r, o.kernel_scale_mm);
-    out.push_back(c);
-    ++st.kept;
-  }
-  if (stats) *stats = st;
-  return out;
+  });
+  return concatenate(chunks, max_distance_mm, stats);
 }
 
 }  // namespace breastfit::fit

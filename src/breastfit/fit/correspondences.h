@@ -41,19 +41,22 @@ double robust_weight(RobustKernel kernel, double r, double sigma);
 
 /// Correspondences of every `stride`-th model vertex (V, N: posed vertices and unit normals).
 /// `hints` (optional, size #V, in/out): per vertex, the scan face found last time (warm start).
+/// `threads`: the searches run on this many threads (≤ 0: all cores); the result does not depend on it.
 std::vector<Correspondence> find_correspondences(const Points& V, const Points& N, const ScanTarget& scan,
                                                  const CorrespondenceOptions& options, double max_distance_mm,
                                                  int stride, CorrespondenceStats* stats,
-                                                 std::vector<Index>* hints = nullptr);
+                                                 std::vector<Index>* hints = nullptr, int threads = 0);
 
 /// Closest points on the posed model (V, F) of the scan's samples; pairs whose model point lies on
 /// the model's open border, beyond max_distance_mm or with disagreeing normals are dropped.
 /// `hints` (optional, one per scan sample, in/out): the model face found last time.
+/// `threads`: as for find_correspondences.
 std::vector<ReverseCorrespondence> find_reverse_correspondences(const Points& V, const Triangles& F,
                                                                 const ScanTarget& scan,
                                                                 const CorrespondenceOptions& options,
                                                                 double max_distance_mm,
                                                                 CorrespondenceStats* stats,
-                                                                std::vector<Index>* hints = nullptr);
+                                                                std::vector<Index>* hints = nullptr,
+                                                                int threads = 0);
 
 }  // namespace breastfit::fit

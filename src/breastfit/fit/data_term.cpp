@@ -5,6 +5,7 @@
 
 #include <algorithm>
 
+#include "breastfit/fit/chunked_assembly.h"
 #include "breastfit/fit/fit_options.h"
 #include "breastfit/fit/row_builder.h"
 
@@ -20,21 +21,25 @@ double DataTerm::evaluate(const TermContext& ctx, double weight, NormalEquations
   const Points& M = ctx.ev.vertices();
   const double mu = ctx.options.correspondences.point_to_point_weight;
   const double scale = weight / static_cast<double>(std::max<size_t>(1, ctx.pairs.size()));
-  double cost = 0.0;
-  model::PointJacobian jac;
-  std::vector<double> vals;
-  for (const auto& c : ctx.pairs) {
-    const Vec3 d = M.row(c.vertex).transpose() - c.target;
-    const double w_plane = scale * c.weight * (1.0 - mu);
-    const double w_point = scale * c.weight * mu;
-    const double r = c.normal.dot(d);
-    cost += w_plane * r * r + w_point * d.squaredNorm();
-    if (!eq) continue;
-    ctx.ev.vertex_jacobian(c.vertex, jac);
-    if (w_plane > 0) add_plane_row(jac, d, c.normal, w_plane, *eq, vals);
-    if (w_point > 0) add_point_rows(jac, d, w_point, *eq, vals);
-  }
-  return cost;
+  const auto rows = [&](Index begin, Index end, NormalEquations* part) {
+    double cost = 0.0;
+    model::PointJacobian jac;
+    std::vector<double> vals;
+    for (Index k = begin; k < end; ++k) {
+      const Correspondence& c = ctx.pairs[static_cast<size_t>(k)];
+      const Vec3 d = M.row(c.vertex).transpose() - c.target;
+      const double w_plane = scale * c.weight * (1.0 - mu);
+      const double w_point = scale * c.weight * mu;
+      const double r = c.normal.dot(d);
+      cost += w_plane * r * r + w_point * d.squaredNorm();
+      if (!part) continue;
+      ctx.ev.vertex_jacobian(c.vertex, jac);
+      if (w_plane > 0) add_plane_row(jac, d, c.normal, w_plane, *part, vals);
+      if (w_point > 0) add_point_rows(jac, d, w_point, *part, vals);
+    }
+    return cost;
+  };
+  return assemble_in_chunks(static_cast<Index>(ctx.pairs.size()), ctx.options.threads, eq, rows);
 }
 
 }  // namespace

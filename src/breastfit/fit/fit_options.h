@@ -129,6 +129,9 @@ struct FitOptions {
   double nipple_tip_check_mm = 18.0;
   double max_surface_mae_mm = 8.0;   ///< a final kept-correspondence MAE above this = not usable
   double min_kept_fraction = 0.25;   ///< fewer kept correspondences than this share = not usable
+  /// Threads for the correspondence searches and the normal equations (0: all cores, or
+  /// OMP_NUM_THREADS). The results are the same bits whatever the number (fit/parallel_chunks.h).
+  int threads = 0;
 
   /// Whether the reverse term is on (λR > 0 and scan samples to use).
   bool uses_reverse_term() const;

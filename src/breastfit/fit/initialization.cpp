@@ -3,12 +3,14 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
 #include "breastfit/core/errors.h"
 #include "breastfit/fit/stage_minimizer.h"
+#include "breastfit/fit/parallel_chunks.h"
 #include "breastfit/fit/problem.h"
 #include "breastfit/mesh/landmark_names.h"
 #include "breastfit/model/pose_evaluator.h"
@@ -104,8 +106,11 @@ LandmarkInitialization initialize_from_landmarks(const model::RiggedModel& model
   return out;
 }
 
-void initialize_arms(const model::RiggedModel& model, const ScanTarget& scan, model::PoseParams& params) {
+void initialize_arms(const model::RiggedModel& model, const ScanTarget& scan, model::PoseParams& params,
+                     int threads) {
   constexpr double kMissMm = 40.0;  // score of a vertex with nothing on the scan within this distance
+  std::vector<int> angles_deg;
+  for (int deg = -40; deg <= 90; deg += 10) angles_deg.push_back(deg);
   for (const char* name : {"upper_arm_R", "upper_arm_L"}) {
     const auto bone = model.bone_index(name);
     if (!bone) continue;
@@ -116,21 +121,30 @@ void initialize_arms(const model::RiggedModel& model, const ScanTarget& scan, mo
         if (it.col() == *bone && it.value() > 0.6) arm.push_back(i);
     if (arm.size() < 10) continue;
     const Quat base = params.bones[*bone].rotation;
-    double best_score = std::numeric_limits<double>::infinity();
-    Quat best = base;
-    for (int deg = -40; deg <= 90; deg += 10) {
-      // Positive angles raise the arm: about +y (posterior) for the left arm, −y for the right.
-      const double sign = std::string(name).back() == 'L' ? 1.0 : -1.0;
-      params.bones[*bone].rotation = Quat(Eigen::AngleAxisd(sign * deg * M_PI / 180.0, Vec3::UnitY())) * base;
-      const Points V = model::pose_vertices(model, params);
+    // Positive angles raise the arm: about +y (posterior) for the left arm, −y for the right.
+    const double sign = std::string(name).back() == 'L' ? 1.0 : -1.0;
+    std::vector<Quat> rotations;
+    for (int deg : angles_deg)
+      rotations.push_back(Quat(Eigen::AngleAxisd(sign * deg * M_PI / 180.0, Vec3::UnitY())) * base);
+    // Every angle scored on its own (in parallel), the best chosen in order.
+    std::vector<double> scores(rotations.size(), 0.0);
+    for_each_chunk(static_cast<Index>(rotations.size()), 1, threads, [&](Index a, Index, Index) {
+      model::PoseParams trial = params;
+      trial.bones[*bone].rotation = rotations[static_cast<size_t>(a)];
+      const Points V = model::pose_vertices(model, trial);
       double score = 0;
       for (size_t k = 0; k < arm.size(); k += 2) {
         const auto m = scan.match(V.row(arm[k]).transpose(), kMissMm);
         score += m ? std::sqrt(m->sq_dist) : kMissMm;
       }
-      if (score < best_score - 1e-9) {
-        best_score = score;
-        best = params.bones[*bone].rotation;
+      scores[static_cast<size_t>(a)] = score;
+    });
+    double best_score = std::numeric_limits<double>::infinity();
+    Quat best = base;
+    for (size_t a = 0; a < rotations.size(); ++a) {
+      if (scores[a] < best_score - 1e-9) {
+        best_score = scores[a];
+        best = rotations[a];
       }
     }
     params.bones[*bone].rotation = best;

@@ -33,7 +33,9 @@ LandmarkInitialization initialize_from_landmarks(const model::RiggedModel& model
 /// axis through the shoulder joint) chosen by a coarse search against the scan: arms go from
 /// hanging (standing) to 90° on arm boards (supine), further than closest points can pull them.
 /// Bones that are missing are skipped. \pre params.global already places the template on the scan.
-void initialize_arms(const model::RiggedModel& model, const ScanTarget& scan, model::PoseParams& params);
+/// The angles are scored on `threads` threads (≤ 0: all cores); the choice does not depend on it.
+void initialize_arms(const model::RiggedModel& model, const ScanTarget& scan, model::PoseParams& params,
+                     int threads = 0);
 
 /// Landmark-free initialisation: principal axes of the scan and of the template, 24 axis
 /// assignments, a short rigid ICP from each, the best kept. Deterministic.

@@ -90,6 +90,23 @@ void NormalEquations::flush() {
   buffered_ = 0;
 }
 
+NormalEquations& NormalEquations::partial(int k) {
+  if (static_cast<int>(partials_.size()) <= k) partials_.resize(k + 1);
+  auto& p = partials_[k];
+  if (!p) p = std::make_unique<NormalEquations>();
+  if (p->active_ != active_) p->set_active(active_);
+  p->gradient_only_ = gradient_only_;
+  p->clear();
+  return *p;
+}
+
+void NormalEquations::add_partial(NormalEquations& p) {
+  p.flush();
+  if (!gradient_only_) H_.triangularView<Eigen::Upper>() += p.H_;
+  g_ += p.g_;
+  cost_ += p.cost_;
+}
+
 void NormalEquations::finalize() {
   if (gradient_only_) return;
   flush();

@@ -5,6 +5,7 @@
 /// Rows are buffered into a dense block (columns = active parameters) and folded into H with a
 /// symmetric rank-k update (Eigen's blocked SYRK): per-row scatter of nnz² products is what made
 /// assembly dominate the registration time before.
+#include <memory>
 #include <vector>
 
 #include <Eigen/Core>
@@ -42,6 +43,13 @@ class NormalEquations {
   /// Folds buffered rows into H and mirrors the upper triangle. Call once after all rows.
   void finalize();
 
+  /// The k-th partial of these equations: the same active parameters and mode, emptied, to take
+  /// the rows of one chunk on another thread (fit/chunked_assembly.h). Kept between calls (no
+  /// allocation per iteration); not thread-safe: take every partial before the threads start.
+  NormalEquations& partial(int k);
+  /// Adds a partial's rows: its H (upper triangle), g and cost.
+  void add_partial(NormalEquations& p);
+
   /// Valid after finalize().
   const Eigen::MatrixXd& H() const { return H_; }
   const Eigen::VectorXd& g() const { return g_; }
@@ -62,6 +70,7 @@ class NormalEquations {
   bool gradient_only_ = false;
   double row_r_ = 0.0, row_w_ = 0.0;  // the row being assembled by begin_row/add_to_row
   bool row_any_ = false;
+  std::vector<std::unique_ptr<NormalEquations>> partials_;
 };
 
 }  // namespace breastfit::fit

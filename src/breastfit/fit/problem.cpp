@@ -28,12 +28,12 @@ TermContext Problem::context() const {
 void Problem::update_correspondences(double max_dist, int stride, bool with_reverse) {
   const Points N = mesh::vertex_normals(ev_.vertices(), model_.rest.F);
   pairs_ = find_correspondences(ev_.vertices(), N, scan_, options_.correspondences, max_dist, stride, &stats_,
-                                &hints_);
+                                &hints_, options_.threads);
   reverse_pairs_.clear();
   reverse_stats_ = CorrespondenceStats{};
   if (with_reverse)
     reverse_pairs_ = find_reverse_correspondences(ev_.vertices(), model_.rest.F, scan_, options_.correspondences,
-                                                  max_dist, &reverse_stats_, &reverse_hints_);
+                                                  max_dist, &reverse_stats_, &reverse_hints_, options_.threads);
 }
 
 void Problem::clear_correspondences() {

@@ -143,7 +143,7 @@ FitResult register_template(const model::RiggedModel& model, ScanTarget& scan, s
   Problem problem(model, scan, options, landmarks);
   problem.evaluator().set_params(params);
   problem.orient_scan_normals(options.correspondences.max_distance_start_mm);
-  initialize_arms(model, scan, params);
+  initialize_arms(model, scan, params, options.threads);
   summary.timings.push_back({"initialization", phase.seconds()});
 
   std::vector<StageOptions> stages;
@@ -173,7 +173,8 @@ FitResult register_template(const model::RiggedModel& model, ScanTarget& scan, s
   if (options.detail.enabled && summary.usable()) {
     phase.reset();
     const SurfaceDetail d =
-        fit_surface_detail(result.vertices, model.rest.F, scan, options.correspondences, options.detail);
+        fit_surface_detail(result.vertices, model.rest.F, scan, options.correspondences, options.detail,
+                           options.threads);
     result.vertices = d.vertices;
     result.detail_offsets = d.offsets;
     summary.detail = {true, d.kept, d.mean_abs_mm, d.max_abs_mm};

@@ -5,6 +5,9 @@
 // Used in the stages that move blendshapes; λR ≤ 0 disables it.
 #include "breastfit/fit/energy_term.h"
 
+#include "breastfit/fit/chunked_assembly.h"
+#include "breastfit/fit/fit_options.h"
+
 namespace breastfit::fit {
 namespace {
 
@@ -17,27 +20,31 @@ double ReverseTerm::evaluate(const TermContext& ctx, double weight, NormalEquati
   if (ctx.reverse.empty()) return 0.0;
   const double scale = weight / static_cast<double>(ctx.reverse.size());
   const Triangles& F = ctx.ev.model().rest.F;
-  double cost = 0.0;
-  model::PointJacobian jac;
-  std::vector<double> vals;
-  for (const auto& c : ctx.reverse) {
-    const Vec3 d = ctx.ev.surface_point(c.model_point) - c.source;
-    const double w = scale * c.weight;
-    const double r = c.normal.dot(d);
-    cost += w * r * r;
-    if (!eq) continue;
-    // The row is Σ_corners bary_c · nᵀ ∂M_c/∂θ: assembled corner by corner (no merging).
-    eq->begin_row(r, w);
-    for (int corner = 0; corner < 3; ++corner) {
-      ctx.ev.vertex_jacobian(F(c.model_point.face, corner), jac);
-      const int nnz = static_cast<int>(jac.params.size());
-      vals.resize(nnz);
-      for (int k = 0; k < nnz; ++k) vals[k] = c.normal.dot(jac.columns[k]);
-      eq->add_to_row(jac.params.data(), vals.data(), nnz, c.model_point.bary[corner]);
+  const auto rows = [&](Index begin, Index end, NormalEquations* part) {
+    double cost = 0.0;
+    model::PointJacobian jac;
+    std::vector<double> vals;
+    for (Index k = begin; k < end; ++k) {
+      const ReverseCorrespondence& c = ctx.reverse[static_cast<size_t>(k)];
+      const Vec3 d = ctx.ev.surface_point(c.model_point) - c.source;
+      const double w = scale * c.weight;
+      const double r = c.normal.dot(d);
+      cost += w * r * r;
+      if (!part) continue;
+      // The row is Σ_corners bary_c · nᵀ ∂M_c/∂θ: assembled corner by corner (no merging).
+      part->begin_row(r, w);
+      for (int corner = 0; corner < 3; ++corner) {
+        ctx.ev.vertex_jacobian(F(c.model_point.face, corner), jac);
+        const int nnz = static_cast<int>(jac.params.size());
+        vals.resize(nnz);
+        for (int j = 0; j < nnz; ++j) vals[j] = c.normal.dot(jac.columns[j]);
+        part->add_to_row(jac.params.data(), vals.data(), nnz, c.model_point.bary[corner]);
+      }
+      part->end_row();
     }
-    eq->end_row();
-  }
-  return cost;
+    return cost;
+  };
+  return assemble_in_chunks(static_cast<Index>(ctx.reverse.size()), ctx.options.threads, eq, rows);
 }
 
 }  // namespace

@@ -63,8 +63,9 @@ std::optional<ScanMatch> ScanTarget::match(const Vec3& q, double max_dist, Index
   return m;
 }
 
-ScanMatch ScanTarget::closest(const Vec3& q) const {
-  const auto cp = index_->closest(q);
+ScanMatch ScanTarget::closest(const Vec3& q, Index* hint_face) const {
+  const auto cp = hint_face && *hint_face >= 0 ? index_->closest(q, *hint_face) : index_->closest(q);
+  if (hint_face) *hint_face = cp.face;
   ScanMatch m;
   m.face = cp.face;
   m.point = cp.point;

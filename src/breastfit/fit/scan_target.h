@@ -34,8 +34,9 @@ class ScanTarget {
   /// the search from (e.g. this query's face at the previous iteration; < 0 = none), updated to
   /// the face found. The result does not depend on the hint, only the speed.
   std::optional<ScanMatch> match(const Vec3& q, double max_dist, Index* hint_face = nullptr) const;
-  /// Exact closest point (no radius).
-  ScanMatch closest(const Vec3& q) const;
+  /// Exact closest point (no radius). `hint_face` (optional, in/out) as for match(): only the
+  /// speed depends on it (e.g. the previous query's face for a run of nearby queries).
+  ScanMatch closest(const Vec3& q, Index* hint_face = nullptr) const;
 
   /// Multiplies every returned normal (−1 when the scan's triangles face inwards).
   void set_normal_sign(double sign) { normal_sign_ = sign; }

@@ -32,7 +32,8 @@ Points apply_surface_detail(const Points& V, const Triangles& F, const Eigen::Ve
 }
 
 SurfaceDetail fit_surface_detail(const Points& V, const Triangles& F, const ScanTarget& scan,
-                                 const CorrespondenceOptions& correspondences, const SurfaceDetailOptions& o) {
+                                 const CorrespondenceOptions& correspondences, const SurfaceDetailOptions& o,
+                                 int threads) {
   const Index n = V.rows();
   SurfaceDetail out;
   out.offsets = Eigen::VectorXd::Zero(n);
@@ -64,7 +65,7 @@ SurfaceDetail fit_surface_detail(const Points& V, const Triangles& F, const Scan
   for (int pass = 0; pass < o.passes; ++pass) {
     const Points Vd = displaced(V, N, h);
     CorrespondenceStats st;
-    const auto pairs = find_correspondences(Vd, N, scan, correspondences, o.max_distance_mm, 1, &st, &hints);
+    const auto pairs = find_correspondences(Vd, N, scan, correspondences, o.max_distance_mm, 1, &st, &hints, threads);
     Eigen::VectorXd diag = base_diag;
     Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n);
     for (const auto& c : pairs) {

@@ -26,9 +26,11 @@ struct SurfaceDetail {
   double mean_abs_mm = 0, max_abs_mm = 0;
 };
 
-/// Fits the offsets for the posed vertices V (faces F) to the scan.
+/// Fits the offsets for the posed vertices V (faces F) to the scan. `threads`: for the
+/// correspondence searches (≤ 0: all cores); the result does not depend on it.
 SurfaceDetail fit_surface_detail(const Points& V, const Triangles& F, const ScanTarget& scan,
-                                 const CorrespondenceOptions& correspondences, const SurfaceDetailOptions& options);
+                                 const CorrespondenceOptions& correspondences, const SurfaceDetailOptions& options,
+                                 int threads = 0);
 
 /// V + offsets · vertex_normals(V, F). \throws InvalidInput when sizes differ.
 Points apply_surface_detail(const Points& V, const Triangles& F, const Eigen::VectorXd& offsets);

@@ -9,8 +9,9 @@ namespace breastfit::metrics {
 std::vector<double> surface_distances(const Points& V, const fit::ScanTarget& scan, bool skip_border) {
   std::vector<double> d;
   d.reserve(V.rows());
+  Index hint = -1;  // neighbouring vertices have neighbouring closest points: a warm start
   for (Index i = 0; i < V.rows(); ++i) {
-    const auto m = scan.closest(V.row(i).transpose());
+    const auto m = scan.closest(V.row(i).transpose(), &hint);
     if (skip_border && m.on_boundary) continue;
     d.push_back(std::sqrt(m.sq_dist));
   }

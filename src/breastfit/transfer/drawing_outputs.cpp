@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "breastfit/core/errors.h"
 #include "breastfit/io/io.h"
@@ -36,6 +37,58 @@ std::string num(double v) {
   std::snprintf(buf, sizeof buf, "%.9g", v);
   return buf;
 }
+
+// The cells of a coarse grid that can hold a point within `reach` of a sample: a cell is marked
+// when it overlaps a sample's box [s − reach, s + reach]. A scan vertex in no marked cell is
+// skin without a nearest-sample query (exact: the painting is the same, most of the scan is far
+// from every drawing).
+class ReachCells {
+ public:
+  ReachCells(const Points& samples, double reach) {
+    lo_ = samples.colwise().minCoeff().transpose() - Vec3::Constant(reach);
+    const Vec3 hi = samples.colwise().maxCoeff().transpose() + Vec3::Constant(reach);
+    cell_ = std::max(8.0 * reach, 1e-9);
+    for (;;) {  // at most ~2M cells
+      for (int a = 0; a < 3; ++a) dims_[a] = static_cast<Index>(std::floor((hi[a] - lo_[a]) / cell_)) + 1;
+      if (dims_[0] * dims_[1] * dims_[2] <= (Index{1} << 21)) break;
+      cell_ *= 2;
+    }
+    marked_.assign(static_cast<size_t>(dims_[0] * dims_[1] * dims_[2]), 0);
+    for (Index i = 0; i < samples.rows(); ++i) {
+      Index from[3], to[3];
+      for (int a = 0; a < 3; ++a) {
+        from[a] = cell(samples(i, a) - reach, a);
+        to[a] = cell(samples(i, a) + reach, a);
+      }
+      for (Index x = from[0]; x <= to[0]; ++x)
+        for (Index y = from[1]; y <= to[1]; ++y)
+          for (Index z = from[2]; z <= to[2]; ++z) marked_[static_cast<size_t>((x * dims_[1] + y) * dims_[2] + z)] = 1;
+    }
+  }
+
+  /// False when no sample is within `reach` of q.
+  bool may_reach(const Vec3& q) const {
+    Index c[3];
+    for (int a = 0; a < 3; ++a) {
+      const double t = std::floor((q[a] - lo_[a]) / cell_);
+      if (!(t >= 0 && t < static_cast<double>(dims_[a]))) return false;
+      c[a] = static_cast<Index>(t);
+    }
+    return marked_[static_cast<size_t>((c[0] * dims_[1] + c[1]) * dims_[2] + c[2])] != 0;
+  }
+
+ private:
+  // Cell of coordinate x along axis a, clamped to the grid (x within the samples' box ± reach).
+  Index cell(double x, int a) const {
+    const double t = std::floor((x - lo_[a]) / cell_);
+    return std::clamp(static_cast<Index>(t), Index{0}, dims_[a] - 1);
+  }
+
+  Vec3 lo_;
+  double cell_ = 1;
+  Index dims_[3] = {1, 1, 1};
+  std::vector<unsigned char> marked_;
+};
 
 // Names may not contain spaces in a PLY comment / OBJ object line.
 std::string token(const std::string& name) {
@@ -141,12 +194,13 @@ TriangleMesh paint_drawings(const TriangleMesh& scan_mm, const std::vector<Trans
   const spatial::KnnIndex index(all);
   // A vertex within `half` of the polyline is within half + spacing/2 of a sample.
   const double reach = half + 0.5 * spacing;
+  const ReachCells cells(all, reach);
   // Where bands overlap (e.g. a fold drawn along the contour) the later curve is painted on top.
   std::vector<Index> near;
   std::vector<double> sq;
   for (Eigen::Index v = 0; v < scan_mm.V.rows(); ++v) {
     const Vec3 q = scan_mm.V.row(v).transpose();
-    if (index.closest(q).sq_dist > reach * reach) continue;
+    if (!cells.may_reach(q) || index.closest(q).sq_dist > reach * reach) continue;
     index.radius_search(q, reach, near, sq);
     int top = -1;
     for (Index i : near) top = std::max(top, owner[static_cast<size_t>(i)]);

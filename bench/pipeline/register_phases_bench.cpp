@@ -1,0 +1,98 @@
+// Benchmarks of the phases of `breastfit register` around the fit (docs/PERFORMANCE.md), on a
+// synthetic case written to a temporary directory (no external data): reading the scan PLY,
+// loading the template, preparing the scan, the whole register_scan (fit, transfer,
+// measurements) with 1 and 2 threads, painting the scan, and writing every output (without
+// report.html).
+#include <benchmark/benchmark.h>
+
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <unistd.h>
+
+#include "breastfit/io/io.h"
+#include "breastfit/io/landmarks_io.h"
+#include "breastfit/model/template_library.h"
+#include "breastfit/pipeline/register_outputs.h"
+#include "breastfit/pipeline/register_scan.h"
+#include "breastfit/synth/case_writer.h"
+#include "breastfit/synth/synth_case.h"
+#include "breastfit/transfer/drawing_outputs.h"
+
+namespace {
+
+using namespace breastfit;
+namespace fs = std::filesystem;
+
+struct Fixture {
+  fs::path dir = fs::temp_directory_path() / ("breastfit-phases-bench-" + std::to_string(::getpid()));
+  std::shared_ptr<const model::RiggedModel> model;
+  pipeline::RegisterRequest request;
+  pipeline::RegisterResult result;
+
+  Fixture() {
+    model = std::make_shared<const model::RiggedModel>(model::load_default_template());
+    synth::SynthOptions so;
+    so.seed = 3;
+    synth::write_case(dir / "case", synth::make_case(*model, so), true);
+    request.scan = io::read_mesh(dir / "case" / "scan.ply");
+    request.landmarks = io::read_landmarks(dir / "case" / "landmarks.mrk.json");
+    request.model = model;
+    result = pipeline::register_scan(request);
+  }
+  ~Fixture() {
+    std::error_code ec;
+    fs::remove_all(dir, ec);
+  }
+};
+
+Fixture& fixture() {
+  static Fixture f;
+  return f;
+}
+
+void BM_ReadScanPly(benchmark::State& state) {
+  auto& f = fixture();
+  for (auto _ : state) benchmark::DoNotOptimize(io::read_mesh(f.dir / "case" / "scan.ply").V.data());
+  state.counters["scan_triangles"] = static_cast<double>(f.request.scan.num_faces());
+}
+BENCHMARK(BM_ReadScanPly)->Unit(benchmark::kMillisecond);
+
+void BM_LoadTemplate(benchmark::State& state) {
+  for (auto _ : state) benchmark::DoNotOptimize(model::load_default_template().rest.V.data());
+}
+BENCHMARK(BM_LoadTemplate)->Unit(benchmark::kMillisecond);
+
+void BM_PrepareScan(benchmark::State& state) {
+  auto& f = fixture();
+  for (auto _ : state) benchmark::DoNotOptimize(pipeline::prepare_scan(f.request.scan, "scan", std::nullopt).to_mm);
+}
+BENCHMARK(BM_PrepareScan)->Unit(benchmark::kMillisecond);
+
+// Arg: threads.
+void BM_RegisterScan(benchmark::State& state) {
+  auto& f = fixture();
+  pipeline::RegisterRequest req = f.request;
+  req.options.threads = static_cast<int>(state.range(0));
+  for (auto _ : state) benchmark::DoNotOptimize(pipeline::register_scan(req).time_s);
+}
+BENCHMARK(BM_RegisterScan)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
+
+void BM_PaintScan(benchmark::State& state) {
+  auto& f = fixture();
+  for (auto _ : state)
+    benchmark::DoNotOptimize(transfer::paint_drawings(f.result.scan.mesh_mm, f.result.drawings_on_scan).C.data());
+}
+BENCHMARK(BM_PaintScan)->Unit(benchmark::kMillisecond);
+
+void BM_WriteOutputs(benchmark::State& state) {
+  auto& f = fixture();
+  pipeline::RegisterOutputOptions o;
+  o.report_html = false;
+  for (auto _ : state) pipeline::write_register_outputs(f.dir / "fit", f.result, *f.model, true, {}, o);
+}
+BENCHMARK(BM_WriteOutputs)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -1,0 +1,58 @@
+// `breastfit bench` on a synthetic case made by `breastfit synth`: the table has the solver time
+// and the whole run's time per case and their medians; --json writes every run; the thread
+// count is reported and does not change the fit.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <regex>
+
+#include <nlohmann/json.hpp>
+
+#include "support/test_paths.h"
+
+namespace breastfit {
+namespace {
+
+namespace fs = std::filesystem;
+
+TEST(BenchCommand, PrintsSolverAndWholeRunTimesPerCaseAndTheirMedians) {
+  if (test::cli_path().empty()) GTEST_SKIP() << "CLI not built";
+  const fs::path tmp = test::temp_dir();  // (a second call would empty it)
+  const fs::path cases = tmp / "cases";
+  std::string out;
+  ASSERT_EQ(test::run_cli("synth --quiet --seed 4 --out '" + (cases / "c4").string() + "'", &out), 0) << out;
+  nlohmann::json runs[2];
+  for (int threads : {1, 2}) {
+    const fs::path json = tmp / ("bench" + std::to_string(threads) + ".json");
+    ASSERT_EQ(test::run_cli("bench '" + cases.string() + "' -n 2 --threads " + std::to_string(threads) +
+                                " --json '" + json.string() + "'",
+                            &out),
+              0)
+        << out;
+    EXPECT_TRUE(std::regex_search(out, std::regex(R"(case\s+time_s\s+total_s\s+iters)"))) << out;
+    EXPECT_TRUE(std::regex_search(out, std::regex(R"(c4\s+\d+\.\d+\s+\d+\.\d+\s+\d+\s+[\d.]+\s+[\d.]+\s+ok)")))
+        << out;
+    EXPECT_NE(out.find("(1 cases, 2 runs each, " + std::to_string(threads) + " threads)"), std::string::npos) << out;
+    std::ifstream f(json);
+    runs[threads - 1] = nlohmann::json::parse(f);
+    const auto& c = runs[threads - 1]["cases"][0];
+    ASSERT_EQ(c["time_s_all"].size(), 2u);
+    ASSERT_EQ(c["total_s_all"].size(), 2u);
+    // The whole run holds the solver's time.
+    for (int k = 0; k < 2; ++k) EXPECT_GT(c["total_s_all"][k].get<double>(), c["time_s_all"][k].get<double>());
+    EXPECT_EQ(runs[threads - 1]["threads"], threads);
+  }
+  // Same fit whatever the thread count.
+  EXPECT_EQ(runs[0]["cases"][0]["surface_mae_mm"], runs[1]["cases"][0]["surface_mae_mm"]);
+  EXPECT_EQ(runs[0]["cases"][0]["iterations"], runs[1]["cases"][0]["iterations"]);
+}
+
+TEST(BenchCommand, RejectsANegativeThreadCount) {
+  if (test::cli_path().empty()) GTEST_SKIP() << "CLI not built";
+  std::string out;
+  EXPECT_EQ(test::run_cli("bench '" + test::temp_dir().string() + "' --threads -1", &out), 2) << out;
+}
+
+}  // namespace
+}  // namespace breastfit
