@@ -305,7 +305,8 @@ async function fit() {
     state.fitRunning = false;
     if (st.state === 'done') {
       const r = st.result;
-      $('progress').textContent = `${r.warm ? 'Re-fit' : 'Fit'} #${r.generation} done in ${(r.server_ms / 1000).toFixed(2)} s (server)`;
+      $('progress').textContent = `${r.warm ? 'Re-fit' : 'Fit'} #${r.generation} done in ${(r.server_ms / 1000).toFixed(2)} s` +
+        (r.warm ? '' : '. To correct a landmark: drag it, then Re-fit.');
       showResult(r);
     } else {
       $('progress').textContent = st.message;
@@ -326,6 +327,8 @@ function rampColour(t) {
 
 function buildModel() {
   groups.model.clear();
+  groups.scan.visible = true;
+  $('colorbar').hidden = true;
   const r = state.result;
   if (!r || !$('show-model').checked) { needsRender = true; return; }
   const g = new THREE.BufferGeometry();
@@ -333,6 +336,7 @@ function buildModel() {
   g.setIndex(r.fitted.faces);
   g.computeVertexNormals();
   const distance = $('show-distance').checked;
+  groups.scan.visible = !distance;  // the coloured model in place of the scan (no z-fighting)
   if (distance) {
     const c = new Float32Array(r.fitted.distances_mm.length * 3);
     r.fitted.distances_mm.forEach((d, i) => c.set(rampColour(d / 10), 3 * i));
@@ -388,8 +392,8 @@ function showResult(r) {
     return;
   }
   v.className = r.usable ? 'usable' : 'not-usable';
-  v.textContent = (r.usable ? 'Usable. ' : 'NOT usable. ') + r.verdict +
-    `. Model-to-scan distance: mean ${fmt(r.surface.mae, 'mm', 2)}.`;
+  v.textContent = (r.usable ? '✓ ' : '✗ ') + r.verdict.charAt(0).toUpperCase() + r.verdict.slice(1) + '.' +
+    (r.usable ? ' Check the drawings, then Export (4).' : ' Check the landmarks and Fit again.');
   $('warnings').innerHTML = '';
   for (const w of r.warnings) {
     const li = document.createElement('li');

@@ -17,7 +17,7 @@ if (!fs.existsSync(path.join(nodeModules, 'playwright-core'))) {
   console.log(`SKIPPED: ${nodeModules}/playwright-core is missing (scripts/setup.sh runs npm ci in web/)`);
   process.exit(77);
 }
-const require = createRequire(path.join(nodeModules, 'x.js'));
+const require = createRequire(path.join(path.resolve(nodeModules), 'x.js'));
 const { chromium } = require('playwright-core');
 
 const fail = (msg) => { console.error('FAILED: ' + msg); process.exitCode = 1; throw new Error(msg); };
@@ -84,9 +84,12 @@ try {
   await page.waitForTimeout(300);
   await page.screenshot({ path: path.join(shots, 'workstation_fit.png') });
 
-  // The drawings' colours in the canvas.
-  const counts = await page.evaluate(async (colours) => {
+  // The drawings' colours in the canvas, counted on each side of the body's midline (the
+  // projected sternal notch): the two breast contours share a colour, one on each side.
+  const midX = (await page.evaluate((q) => window.breastfitTest.project(q), truth.sternal_notch)).x;
+  const counts = await page.evaluate(async ({ colours, midX }) => {
     const src = document.getElementById('canvas');
+    const box = src.getBoundingClientRect();
     const img = new Image();
     img.src = src.toDataURL('image/png');
     await img.decode();
@@ -95,18 +98,23 @@ try {
     const ctx = c.getContext('2d');
     ctx.drawImage(img, 0, 0);
     const px = ctx.getImageData(0, 0, c.width, c.height).data;
+    const split = (midX - box.left) / box.width * c.width;
     const rgb = colours.map((h) => [1, 3, 5].map((i) => parseInt(h.slice(i, i + 2), 16)));
-    const n = rgb.map(() => 0);
-    for (let i = 0; i < px.length; i += 4)
-      rgb.forEach((q, k) => { if (Math.abs(px[i] - q[0]) + Math.abs(px[i + 1] - q[1]) + Math.abs(px[i + 2] - q[2]) < 12) n[k]++; });
+    const n = rgb.map(() => [0, 0]);
+    for (let i = 0; i < px.length; i += 4) {
+      const side = ((i / 4) % c.width) < split ? 0 : 1;
+      rgb.forEach((q, k) => { if (Math.abs(px[i] - q[0]) + Math.abs(px[i + 1] - q[1]) + Math.abs(px[i + 2] - q[2]) < 12) n[k][side]++; });
+    }
     return n;
-  }, st.result.drawings.map((d) => d.colour));
-  st.result.drawings.forEach((d, k) => console.log(`  ${d.name} ${d.colour}: ${counts[k]} pixels`));
-  const contours = st.result.drawings.map((d, k) => [d, counts[k]]).filter(([d]) => /breast_contour/.test(d.name));
-  check(contours.length === 2 && contours.every(([, n]) => n > 200), 'both breast contours are visible in their colours');
+  }, { colours: st.result.drawings.map((d) => d.colour), midX });
+  st.result.drawings.forEach((d, k) => console.log(`  ${d.name} ${d.colour}: ${counts[k][0]} | ${counts[k][1]} pixels (screen left | right)`));
+  const contour = st.result.drawings.findIndex((d) => d.name === 'breast_contour_R');
+  const sternum = st.result.drawings.findIndex((d) => d.name === 'sternum');
+  check(contour >= 0 && counts[contour][0] > 200 && counts[contour][1] > 200,
+    'the breast contours are visible in their colour on both sides of the midline');
+  check(sternum >= 0 && counts[sternum][0] + counts[sternum][1] > 200, 'the sternum line is visible in its colour');
 
   // Drag nipple_R 12 px down and re-fit: warm-started.
-  const nipple = truth.nipple_R;
   const before = (await page.evaluate(() => window.breastfitTest.state())).landmarks.nipple_R;
   const xy = await page.evaluate((q) => window.breastfitTest.project(q), before);
   await page.mouse.move(xy.x, xy.y);
@@ -117,7 +125,6 @@ try {
   const after = (await page.evaluate(() => window.breastfitTest.state())).landmarks.nipple_R;
   const moved = Math.hypot(after[0] - before[0], after[1] - before[1], after[2] - before[2]);
   check(moved > 2, `nipple_R dragged by ${moved.toFixed(1)} mm`);
-  void nipple;
   await page.click('#fit');
   await page.waitForFunction(() => { const s = window.breastfitTest.state(); return s.result && s.result.generation === 2 && !s.fitRunning; },
     null, { timeout: 120000 });

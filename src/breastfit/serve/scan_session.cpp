@@ -1,5 +1,7 @@
 #include "breastfit/serve/scan_session.h"
 
+#include <time.h>
+
 #include <cmath>
 
 #include "breastfit/core/errors.h"
@@ -7,6 +9,16 @@
 #include "breastfit/io/io.h"
 
 namespace breastfit::serve {
+
+namespace {
+
+double thread_cpu_ms() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return 1e3 * static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_nsec);
+}
+
+}  // namespace
 
 const char* to_string(FitState s) {
   switch (s) {
@@ -36,6 +48,7 @@ ScanSession::~ScanSession() {
 
 std::shared_ptr<const FitOutcome> ScanSession::run_fit(const LandmarkSet& landmarks_mm, bool warm) {
   Timer timer;
+  const double cpu_start = thread_cpu_ms();
   pipeline::RegisterRequest req;
   req.scan_name = name_;
   req.landmarks = landmarks_mm;
@@ -63,6 +76,7 @@ std::shared_ptr<const FitOutcome> ScanSession::run_fit(const LandmarkSet& landma
   for (Eigen::Index i = 0; i < out->result.fit.vertices.rows(); ++i)
     out->distances_mm.push_back(std::sqrt(scan.closest(out->result.fit.vertices.row(i).transpose()).sq_dist));
   out->server_ms = 1000 * timer.seconds();
+  out->server_cpu_ms = thread_cpu_ms() - cpu_start;
   std::lock_guard<std::mutex> lock(mutex_);
   out->generation = ++generation_;
   if (out->result.usable()) last_params_ = out->result.fit.params;

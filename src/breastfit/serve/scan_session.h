@@ -23,7 +23,10 @@ namespace breastfit::serve {
 struct FitOutcome {
   pipeline::RegisterResult result;
   std::vector<double> distances_mm;  ///< per fitted vertex: distance to the scan
-  double server_ms = 0;              ///< the fit request's time in the server (fit, transfer, measurements)
+  double server_ms = 0;              ///< the fit request's wall time in the server (fit, transfer, measurements)
+  /// The same work's CPU time on its (single) thread: what server_ms is on an idle machine, and
+  /// independent of other processes' load.
+  double server_cpu_ms = 0;
   bool warm = false;                 ///< warm-started from the previous fit
   int generation = 0;                ///< 1 for the session's first fit, then 2, 3, ...
 };

@@ -93,6 +93,7 @@ json to_json(const FitOutcome& o, const model::RiggedModel& model) {
   j["generation"] = o.generation;
   j["warm"] = o.warm;
   j["server_ms"] = o.server_ms;
+  j["server_cpu_ms"] = o.server_cpu_ms;
   j["usable"] = r.usable();
   j["verdict"] = r.fit.summary.verdict.reason;
   j["message"] = r.fit.summary.message;
