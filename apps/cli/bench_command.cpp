@@ -1,7 +1,6 @@
 // breastfit bench DIR: end-to-end registration timings (medians) over a directory of cases.
 #include <algorithm>
 #include <cstdio>
-#include <cstdlib>
 #include <fstream>
 #include <iostream>
 
@@ -46,8 +45,6 @@ std::vector<double> time_refits(const std::filesystem::path& dir, const std::sha
     usable = usable && outcome->result.usable();
     ms.push_back(outcome->server_ms);
     cpu_ms.push_back(outcome->server_cpu_ms);
-    if (std::getenv("BREASTFIT_BENCH_PHASES"))
-      for (const auto& t : outcome->result.timings) std::fprintf(stderr, "  %s %.1f ms\n", t.phase.c_str(), 1000 * t.seconds);
   }
   return ms;
 }
