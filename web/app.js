@@ -118,9 +118,10 @@ function rebuildLandmarks() {
     lines.renderOrder = 2;
     groups.landmarks.add(lines);
     for (const m of state.result.model_landmarks) {
-      const s = new THREE.Mesh(new THREE.SphereGeometry(r * 0.6, 12, 8),
+      // The fitted model's landmark: a small blue disc drawn over the placed (red) one.
+      const s = new THREE.Mesh(new THREE.SphereGeometry(r * 0.5, 12, 8),
         new THREE.MeshBasicMaterial({ color: 0x1565c0, depthTest: false }));
-      s.renderOrder = 2;
+      s.renderOrder = 4;
       s.position.set(...m.position);
       groups.landmarks.add(s);
     }
@@ -330,7 +331,7 @@ function buildModel() {
   groups.scan.visible = true;
   $('colorbar').hidden = true;
   const r = state.result;
-  if (!r || !$('show-model').checked) { needsRender = true; return; }
+  if (!r || (!$('show-model').checked && !$('show-distance').checked)) { needsRender = true; return; }
   const g = new THREE.BufferGeometry();
   g.setAttribute('position', new THREE.BufferAttribute(new Float32Array(r.fitted.vertices), 3));
   g.setIndex(r.fitted.faces);
@@ -346,6 +347,7 @@ function buildModel() {
   const m = new THREE.Mesh(g, new THREE.MeshStandardMaterial({
     color: distance ? 0xffffff : 0x8fa8c8, vertexColors: distance, transparent: opacity < 1, opacity,
     depthWrite: opacity >= 1, roughness: 0.7, side: THREE.DoubleSide,
+    polygonOffset: true, polygonOffsetFactor: -1, polygonOffsetUnits: -4,  // in front where it touches the scan
   }));
   groups.model.add(m);
   $('colorbar').hidden = !distance;
