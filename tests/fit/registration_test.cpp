@@ -95,14 +95,17 @@ TEST(Registration, WarmRefitStartsFromTheGivenParametersAndRunsOnlyRefine) {
   const FitOptions o;
   const auto full = register_template(m, scan, lms, o);
   ASSERT_TRUE(full.summary.usable()) << full.summary.message;
-  // From the truth: the re-fit stays there (one stage, few iterations, small distances).
-  const auto warm = refit_template(m, scan, lms, o, truth);
+  // From the full fit's parameters (what the workstation does after a landmark moved; here none
+  // moved): one stage, a few iterations, and no worse than the full fit.
+  const auto warm = refit_template(m, scan, lms, o, full.params);
   ASSERT_TRUE(warm.summary.usable()) << warm.summary.message;
   EXPECT_EQ(warm.summary.initialization, "warm start");
   ASSERT_EQ(warm.summary.stages.size(), 1u);
   EXPECT_EQ(warm.summary.stages[0].name, "refine");
   EXPECT_LE(static_cast<int>(warm.summary.iterations.size()), o.refine.max_iterations);
-  EXPECT_LT(warm.summary.kept_mae_mm, full.summary.kept_mae_mm + 0.05);
+  EXPECT_LT(warm.summary.kept_mae_mm, full.summary.kept_mae_mm + 0.02);
+  // From the truth it stays close to it (the priors pull a noiseless toy fit only a little).
+  EXPECT_LT(refit_template(m, scan, lms, o, truth).summary.kept_mae_mm, 0.5);
   // Parameters of another template are refused.
   auto other = truth;
   other.bones.pop_back();
