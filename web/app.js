@@ -40,7 +40,8 @@ const headLight = new THREE.DirectionalLight(0xffffff, 1.4);
 camera.add(headLight);
 scene.add(camera);
 
-const groups = { scan: new THREE.Group(), model: new THREE.Group(), drawings: new THREE.Group(), landmarks: new THREE.Group() };
+const groups = { scan: new THREE.Group(), model: new THREE.Group(), drawings: new THREE.Group(), landmarks: new THREE.Group(),
+  mapped: new THREE.Group() };
 for (const g of Object.values(groups)) scene.add(g);
 
 function resize() {
@@ -214,6 +215,10 @@ async function openScan(path) {
   $('export-dir').value = 'fits/' + data.name.replace(/\.[^.\/]*$/, '').replace(/[\/]/g, '_');
   $('mrk-path').value = data.name.replace(/\.[^.\/]*$/, '') + '.landmarks.mrk.json';
   showResult(null);
+  groups.mapped.clear();
+  $('map-result').textContent = '';
+  $('export-result').textContent = '';
+  refreshMapSources();
   rebuildLandmarks();
   resize();
   setView('front');
@@ -309,6 +314,7 @@ async function fit() {
       $('progress').textContent = `${r.warm ? 'Re-fit' : 'Fit'} #${r.generation} done in ${(r.server_ms / 1000).toFixed(2)} s` +
         (r.warm ? '' : '. To correct a landmark: drag it, then Re-fit.');
       showResult(r);
+      refreshMapSources();
     } else {
       $('progress').textContent = st.message;
       if (st.state === 'failed') showMessage(st.message);
@@ -354,24 +360,27 @@ function buildModel() {
   needsRender = true;
 }
 
+// A drawing as a tube (WebGL line width is 1 px everywhere); `scale` of the standard radius.
+function addTube(group, d, scale, onTop = false) {
+  const pts = [];
+  for (let i = 0; i < d.points.length; i += 3) pts.push(new THREE.Vector3(d.points[i], d.points[i + 1], d.points[i + 2]));
+  if (d.closed && pts.length) pts.push(pts[0]);
+  if (pts.length < 2) return;
+  const curve = new THREE.CatmullRomCurve3(pts, false, 'centripetal');
+  const radius = (scanBox ? scanBox.getSize(new THREE.Vector3()).length() * 0.0022 : 1.5) * scale;
+  const tube = new THREE.Mesh(new THREE.TubeGeometry(curve, Math.max(pts.length * 2, 16), radius, 6, false),
+    new THREE.MeshBasicMaterial({ color: d.colour, depthTest: !onTop }));
+  tube.renderOrder = onTop ? 2 : 1;
+  group.add(tube);
+}
+
 function buildDrawings() {
   groups.drawings.clear();
   const r = state.result;
   $('legend').innerHTML = '';
   if (!r) return;
   for (const d of r.drawings) {
-    const pts = [];
-    for (let i = 0; i < d.points.length; i += 3) pts.push(new THREE.Vector3(d.points[i], d.points[i + 1], d.points[i + 2]));
-    if (d.closed && pts.length) pts.push(pts[0]);
-    // Thick lines: a tube (WebGL line width is 1 px everywhere).
-    if (pts.length >= 2) {
-      const curve = new THREE.CatmullRomCurve3(pts, false, 'centripetal');
-      const radius = scanBox ? scanBox.getSize(new THREE.Vector3()).length() * 0.0022 : 1.5;
-      const tube = new THREE.Mesh(new THREE.TubeGeometry(curve, Math.max(pts.length * 2, 16), radius, 6, false),
-        new THREE.MeshBasicMaterial({ color: d.colour }));
-      tube.renderOrder = 1;
-      groups.drawings.add(tube);
-    }
+    addTube(groups.drawings, d, 1);
     const li = document.createElement('li');
     li.innerHTML = `<span class="swatch" style="background:${d.colour}"></span>${d.name}` +
       ` <span class="hint">${Math.round(100 * d.supported_fraction)} % on the scan</span>`;
@@ -414,6 +423,38 @@ function showResult(r) {
   buildModel();
   buildDrawings();
   rebuildLandmarks();
+}
+
+// ---------- standing <-> supine ----------
+async function refreshMapSources() {
+  const { status, data } = await api('GET', '/api/scans');
+  if (status !== 200) return;
+  const sel = $('map-from');
+  sel.innerHTML = '';
+  for (const sc of data.scans.filter((x) => x.fitted && x.id !== state.scanId)) {
+    const o = document.createElement('option');
+    o.value = sc.id;
+    o.textContent = sc.name;
+    sel.appendChild(o);
+  }
+  $('map').disabled = !sel.options.length || !(state.result && state.result.usable);
+}
+
+async function mapFrom() {
+  const { status, data } = await api('POST', `/api/scans/${state.scanId}/map`, { from: $('map-from').value });
+  if (status !== 200) return showMessage(data.error);
+  groups.mapped.clear();
+  // Thin and light, over this scan's own drawings (which they should follow).
+  for (const c of data.curves) {
+    const light = '#' + new THREE.Color(c.colour).lerp(new THREE.Color(0xffffff), 0.55).getHexString();
+    addTube(groups.mapped, { ...c, colour: light }, 0.45, true);
+  }
+  const low = data.curves.reduce((n, c) => n + c.confidence.low, 0);
+  const all = data.curves.reduce((n, c) => n + c.confidence.high + c.confidence.medium + c.confidence.low, 0);
+  $('map-result').textContent = `Mapped ${data.curves.length} drawings from ${data.from}` +
+    (low ? ` (${low} of ${all} points of low confidence: off this scan or far from the fit)` : '') + '.';
+  showMessage('');
+  needsRender = true;
 }
 
 // ---------- landmarks files, export ----------
@@ -471,6 +512,7 @@ $('cancel').onclick = () => api('POST', `/api/scans/${state.scanId}/cancel`);
 $('import-mrk').onclick = importLandmarks;
 $('export-mrk').onclick = saveLandmarks;
 $('export').onclick = exportResult;
+$('map').onclick = mapFrom;
 $('show-model').onchange = buildModel;
 $('show-distance').onchange = buildModel;
 $('model-opacity').oninput = buildModel;

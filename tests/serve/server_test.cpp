@@ -284,6 +284,53 @@ TEST(Server, FitWarmRefitAndExport) {
   EXPECT_NE(report->body.find("<html"), std::string::npos);
 }
 
+// Standing <-> supine: two fitted scans of one patient; here the same synthetic scan twice, so the
+// drawings mapped from one must land on the other's own drawings.
+TEST(Server, MapsTheDrawingsOfAnotherFittedScan) {
+  RunningServer s({});
+  auto c = s.client();
+  const std::string a = open_scan(c, "cases/a/scan.ply");
+  const std::string b = open_scan(c, "cases/b/scan.ply");
+  const std::string map = "/api/scans/" + b + "/map";
+  const auto early = c.Post(map.c_str(), json{{"from", a}}.dump(), "application/json");
+  EXPECT_EQ(early->status, 400);
+  EXPECT_NE(body(early)["error"].get<std::string>().find("usable fit first"), std::string::npos) << early->body;
+  json fits;
+  for (const std::string& id : {a, b}) {
+    ASSERT_EQ(c.Post(("/api/scans/" + id + "/fit").c_str(), json{{"landmarks", landmarks_json()}}.dump(),
+                     "application/json")->status, 202);
+    fits[id] = wait_fit(c, id);
+    ASSERT_EQ(fits[id]["state"], "done");
+  }
+  const json list = body(c.Get("/api/scans"))["scans"];
+  ASSERT_GE(list.size(), 2u);
+  EXPECT_EQ(c.Post(map.c_str(), json{{"from", b}}.dump(), "application/json")->status, 400);  // itself
+  const auto mapped = c.Post(map.c_str(), json{{"from", a}}.dump(), "application/json");
+  ASSERT_EQ(mapped->status, 200) << mapped->body;
+  const json curves = body(mapped)["curves"];
+  const json own = fits[b]["result"]["drawings"];
+  ASSERT_EQ(curves.size(), own.size());
+  for (size_t k = 0; k < curves.size(); ++k) {
+    EXPECT_EQ(curves[k]["name"], own[k]["name"]);
+    EXPECT_EQ(curves[k]["colour"], own[k]["colour"]);
+    // Every mapped point lies near B's own drawing of the same name.
+    const auto& p = curves[k]["points"];
+    const auto& q = own[k]["points"];
+    double worst = 0;
+    for (size_t i = 0; i < p.size(); i += 3) {
+      double best = 1e9;
+      for (size_t j = 0; j < q.size(); j += 3) {
+        const Vec3 d(p[i].get<double>() - q[j].get<double>(), p[i + 1].get<double>() - q[j + 1].get<double>(),
+                     p[i + 2].get<double>() - q[j + 2].get<double>());
+        best = std::min(best, d.norm());
+      }
+      worst = std::max(worst, best);
+    }
+    EXPECT_LT(worst, 5.0) << curves[k]["name"];
+    EXPECT_GT(curves[k]["confidence"]["high"].get<int>(), 0) << curves[k]["name"];
+  }
+}
+
 TEST(Server, LandmarksImportAndSave) {
   RunningServer s({});
   auto c = s.client();

@@ -2,7 +2,8 @@
 // playwright-core: a synthetic case is opened, the 12 landmarks are placed by clicking the canvas
 // where the true landmarks are on screen, the scan is fitted, the drawings are looked for in the
 // canvas (their colours), one landmark is dragged and the scan re-fitted (warm start), the outputs
-// are exported and read back with `breastfit inspect`.
+// are exported and read back with `breastfit inspect`; a supine scan of the same subject is opened,
+// its landmarks imported, fitted, and the standing drawings mapped onto it.
 //
 // Usage: node workstation_browser_test.mjs BREASTFIT_EXE WEB_NODE_MODULES WORK_DIR [SCREENSHOT_DIR]
 // Exit codes: 0 passed, 1 failed, 77 skipped (node_modules missing: run scripts/setup.sh).
@@ -28,6 +29,7 @@ const workspace = path.join(work, 'workspace');
 fs.mkdirSync(workspace, { recursive: true });
 fs.mkdirSync(shots, { recursive: true });
 execFileSync(exe, ['synth', '--out', path.join(workspace, 'case'), '--seed', '5', '--rotation-deg', '0', '--quiet']);
+execFileSync(exe, ['synth', '--out', path.join(workspace, 'supine'), '--seed', '5', '--pose', 'supine', '--rotation-deg', '0', '--quiet']);
 const truth = JSON.parse(fs.readFileSync(path.join(workspace, 'case', 'truth', 'landmarks.json'), 'utf8'));
 
 const server = spawn(exe, ['serve', '--workspace', workspace, '--port', '0'], { stdio: ['ignore', 'pipe', 'inherit'] });
@@ -148,6 +150,25 @@ try {
   check(/breast_contour_R/.test(text) && /breast_contour_L/.test(text), 'breastfit inspect reads the exported drawings');
   const report = JSON.parse(fs.readFileSync(path.join(out, 'report.json'), 'utf8'));
   check(report.status !== 'not_usable', `report.json status: ${report.status}`);
+
+  // Standing -> supine: a supine scan of the same subject, its landmarks imported from its file,
+  // fitted, then the standing scan's drawings mapped onto it.
+  await page.fill('#scan-path', 'supine/scan.ply');
+  await page.click('#open-scan');
+  await page.waitForFunction(() => /supine/.test(document.getElementById('scan-info').textContent), null, { timeout: 60000 });
+  await page.fill('#mrk-path', 'supine/landmarks.mrk.json');
+  await page.click('#import-mrk');
+  await page.waitForFunction(() => Object.keys(window.breastfitTest.state().landmarks).length === 12, null, { timeout: 30000 });
+  await page.click('#fit');
+  await page.waitForFunction(() => { const s = window.breastfitTest.state(); return s.result && !s.fitRunning; },
+    null, { timeout: 180000 });
+  check((await page.evaluate(() => window.breastfitTest.state())).result.usable, 'the supine scan is fitted');
+  await page.waitForFunction(() => !document.getElementById('map').disabled, null, { timeout: 10000 });
+  await page.click('#map');
+  await page.waitForFunction(() => /Mapped/.test(document.getElementById('map-result').textContent), null, { timeout: 60000 });
+  const mapText = await page.textContent('#map-result');
+  check(/Mapped 5 drawings from case\/scan.ply/.test(mapText), `standing drawings mapped onto the supine scan: "${mapText}"`);
+  await page.screenshot({ path: path.join(shots, 'workstation_map.png') });
 } catch (e) {
   console.error(e.stack || String(e));
   exitCode = 1;

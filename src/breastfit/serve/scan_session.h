@@ -62,6 +62,9 @@ class ScanSession {
   /// The scan's body frame from its shape (mesh::body_frame_from_principal_axes): the page's
   /// standard views before a fit.
   const mesh::BodyFrame& body_frame() const { return frame_; }
+  /// The scan's closest-point index (read it only while no fit of this scan runs: a fit sets its
+  /// normal sign).
+  const fit::ScanTarget& target() const { return *target_.target; }
 
   /// Starts a fit with `landmarks_mm` (positions in mm, scan frame). `warm`: start from the last
   /// usable fit's parameters (pipeline::RegisterRequest::warm_start) when there is one.

@@ -22,6 +22,7 @@
 #include "breastfit/serve/scan_session.h"
 #include "breastfit/serve/session_json.h"
 #include "breastfit/serve/workspace.h"
+#include "breastfit/transfer/surface_map.h"
 
 namespace breastfit::serve {
 namespace fs = std::filesystem;
@@ -221,6 +222,47 @@ struct Server::Impl {
                     for (const auto& l : model->landmarks) a.push_back(l.name);
                     return a;
                   }()}});
+    }));
+
+    http.Get("/api/scans", guarded([this](const httplib::Request&, httplib::Response& res) {
+      json list = json::array();
+      std::lock_guard<std::mutex> lock(sessions_mutex);
+      for (const auto& [id, s] : sessions) {
+        const FitStatus st = s->status();
+        list.push_back({{"id", id}, {"name", s->name()}, {"fitted", st.outcome && st.outcome->result.usable()}});
+      }
+      send_json(res, 200, {{"scans", list}});
+    }));
+
+    // Standing <-> supine: the drawings of another fitted scan (A) mapped onto this one (B)
+    // through the two fits (transfer::map_markups), projected onto this scan.
+    http.Post(R"(/api/scans/(\d+)/map)", guarded([this](const httplib::Request& req, httplib::Response& res) {
+      const std::string from = string_field(parse_body(req), "from");
+      const auto b = session(req);
+      std::shared_ptr<ScanSession> a;
+      {
+        std::lock_guard<std::mutex> lock(sessions_mutex);
+        const auto it = sessions.find(from);
+        if (it == sessions.end()) throw InvalidInput("no open scan with id '" + from + "'");
+        a = it->second;
+      }
+      if (a == b) throw InvalidInput("map from another scan: this is the same one");
+      const FitStatus sa = a->status(), sb = b->status();
+      for (const auto* st : {&sa, &sb})
+        if (!st->outcome || !st->outcome->result.usable())
+          throw InvalidInput("both scans need a usable fit first ('" + (st == &sa ? a->name() : b->name()) + "' has none)");
+      if (sb.state == FitState::Running) {
+        send_error(res, 409, "this scan is being fitted: map when the fit has ended");
+        return;
+      }
+      transfer::MapOptions mo;
+      mo.projection.reject_scan_border = !b->scan().was_point_cloud;
+      const auto& ra = sa.outcome->result;
+      const auto& rb = sb.outcome->result;
+      const transfer::MapResult mapped = transfer::map_markups(ra.drawings_mm, ra.fitted_mm, rb.fitted_mm, &b->target(), mo);
+      json j = mapped_drawings_json(mapped);
+      j["from"] = a->name();
+      send_json(res, 200, j);
     }));
 
     http.Get(R"(/api/scans/(\d+)/mesh)", guarded([this](const httplib::Request& req, httplib::Response& res) {

@@ -127,6 +127,26 @@ json to_json(const FitOutcome& o, const model::RiggedModel& model) {
   return j;
 }
 
+json mapped_drawings_json(const transfer::MapResult& mapped) {
+  json curves = json::array();
+  size_t first = mapped.markups.points.size();  // MapResult::points: the points, then each curve's
+  for (size_t k = 0; k < mapped.markups.curves.size(); ++k) {
+    const Curve& c = mapped.markups.curves[k];
+    json counts = {{"high", 0}, {"medium", 0}, {"low", 0}};
+    for (Eigen::Index i = 0; i < c.points.rows(); ++i) {
+      const auto& conf = mapped.points[first + static_cast<size_t>(i)].confidence;
+      if (counts.contains(conf)) counts[conf] = counts[conf].get<int>() + 1;
+    }
+    first += static_cast<size_t>(c.points.rows());
+    curves.push_back({{"name", c.name},
+                      {"closed", c.closed},
+                      {"colour", hex(pipeline::report_curve_colour(c.name, k))},
+                      {"points", flat(c.points)},
+                      {"confidence", counts}});
+  }
+  return {{"curves", curves}};
+}
+
 json to_json(const FitStatus& s, const model::RiggedModel& model) {
   json j;
   j["state"] = to_string(s.state);

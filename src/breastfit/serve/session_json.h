@@ -8,6 +8,7 @@
 #include "breastfit/mesh/body_frame.h"
 #include "breastfit/mesh/landmarks.h"
 #include "breastfit/serve/scan_session.h"
+#include "breastfit/transfer/surface_map.h"
 
 namespace breastfit::serve {
 
@@ -25,6 +26,10 @@ nlohmann::json to_json(const FitOutcome& outcome, const model::RiggedModel& mode
 
 /// A body frame for the page's views: {"origin", "left", "posterior", "superior", "source"}.
 nlohmann::json to_json(const mesh::BodyFrame& frame);
+
+/// Drawings mapped from another fit (transfer::map_markups): the curves with their report.html
+/// colours and, per curve, how many control points are of "high", "medium" and "low" confidence.
+nlohmann::json mapped_drawings_json(const transfer::MapResult& mapped);
 
 /// Landmarks sent by the page: [{"name": ..., "position": [x, y, z]}] in mm.
 /// \throws InvalidInput naming the problem (not an array, a bad entry, a non-finite position)
