@@ -60,8 +60,12 @@ TEST(ScanSession, OneFitAtATimeAndCancel) {
   ASSERT_TRUE(s.start_fit(the_case().landmarks, false));
   EXPECT_FALSE(s.start_fit(the_case().landmarks, false));
   EXPECT_EQ(s.status().state, FitState::Running);
+  int used = 0;
+  EXPECT_FALSE(s.with_target([&](const fit::ScanTarget&) { ++used; }));  // the fit owns the index
   s.cancel();
   s.wait();
+  EXPECT_TRUE(s.with_target([&](const fit::ScanTarget& t) { used += t.mesh().F.rows() > 0; }));
+  EXPECT_EQ(used, 1);
   const FitStatus st = s.status();
   EXPECT_EQ(st.state, FitState::Cancelled);
   EXPECT_EQ(st.outcome, nullptr);

@@ -70,11 +70,14 @@ std::shared_ptr<const FitOutcome> ScanSession::run_fit(const LandmarkSet& landma
     }
     return cancel_ ? fit::CallbackResult::Abort : fit::CallbackResult::Continue;
   };
-  out->result = pipeline::register_prepared(req, target_, on_iteration);
-  const fit::ScanTarget& scan = *target_.target;
-  out->distances_mm.reserve(out->result.fit.vertices.rows());
-  for (Eigen::Index i = 0; i < out->result.fit.vertices.rows(); ++i)
-    out->distances_mm.push_back(std::sqrt(scan.closest(out->result.fit.vertices.row(i).transpose()).sq_dist));
+  {
+    std::lock_guard<std::mutex> use(target_mutex_);
+    out->result = pipeline::register_prepared(req, target_, on_iteration);
+    const fit::ScanTarget& scan = *target_.target;
+    out->distances_mm.reserve(out->result.fit.vertices.rows());
+    for (Eigen::Index i = 0; i < out->result.fit.vertices.rows(); ++i)
+      out->distances_mm.push_back(std::sqrt(scan.closest(out->result.fit.vertices.row(i).transpose()).sq_dist));
+  }
   out->server_ms = 1000 * timer.seconds();
   out->server_cpu_ms = thread_cpu_ms() - cpu_start;
   std::lock_guard<std::mutex> lock(mutex_);
@@ -111,6 +114,17 @@ void ScanSession::finish(FitState state, std::string message, std::shared_ptr<co
   status_.state = state;
   status_.message = std::move(message);
   if (outcome) status_.outcome = std::move(outcome);
+}
+
+bool ScanSession::with_target(const std::function<void(const fit::ScanTarget&)>& f) {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (status_.state == FitState::Running) return false;
+  }
+  std::unique_lock<std::mutex> use(target_mutex_, std::try_to_lock);
+  if (!use.owns_lock()) return false;  // a fit has just started
+  f(*target_.target);
+  return true;
 }
 
 void ScanSession::cancel() { cancel_ = true; }

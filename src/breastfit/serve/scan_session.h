@@ -4,6 +4,7 @@
 /// with its progress readable at any time and a cancel that ends it after the current iteration.
 #include <atomic>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -62,9 +63,10 @@ class ScanSession {
   /// The scan's body frame from its shape (mesh::body_frame_from_principal_axes): the page's
   /// standard views before a fit.
   const mesh::BodyFrame& body_frame() const { return frame_; }
-  /// The scan's closest-point index (read it only while no fit of this scan runs: a fit sets its
-  /// normal sign).
-  const fit::ScanTarget& target() const { return *target_.target; }
+  /// Runs `f` on the scan's closest-point index while no fit of this scan runs (a fit changes the
+  /// index's normal sign; one started meanwhile waits for `f`). Returns false, without calling
+  /// `f`, when a fit is running.
+  bool with_target(const std::function<void(const fit::ScanTarget&)>& f);
 
   /// Starts a fit with `landmarks_mm` (positions in mm, scan frame). `warm`: start from the last
   /// usable fit's parameters (pipeline::RegisterRequest::warm_start) when there is one.
@@ -90,6 +92,7 @@ class ScanSession {
   mesh::BodyFrame frame_;
 
   mutable std::mutex mutex_;
+  std::mutex target_mutex_;  // held while the index is used (a fit, with_target)
   FitStatus status_;
   std::optional<model::PoseParams> last_params_;  // of the last usable fit
   int generation_ = 0;

@@ -251,15 +251,17 @@ struct Server::Impl {
       for (const auto* st : {&sa, &sb})
         if (!st->outcome || !st->outcome->result.usable())
           throw InvalidInput("both scans need a usable fit first ('" + (st == &sa ? a->name() : b->name()) + "' has none)");
-      if (sb.state == FitState::Running) {
-        send_error(res, 409, "this scan is being fitted: map when the fit has ended");
-        return;
-      }
       transfer::MapOptions mo;
       mo.projection.reject_scan_border = !b->scan().was_point_cloud;
       const auto& ra = sa.outcome->result;
       const auto& rb = sb.outcome->result;
-      const transfer::MapResult mapped = transfer::map_markups(ra.drawings_mm, ra.fitted_mm, rb.fitted_mm, &b->target(), mo);
+      transfer::MapResult mapped;
+      if (!b->with_target([&](const fit::ScanTarget& scan) {
+            mapped = transfer::map_markups(ra.drawings_mm, ra.fitted_mm, rb.fitted_mm, &scan, mo);
+          })) {
+        send_error(res, 409, "this scan is being fitted: map when the fit has ended");
+        return;
+      }
       json j = mapped_drawings_json(mapped);
       j["from"] = a->name();
       send_json(res, 200, j);
