@@ -23,7 +23,7 @@ packages=(
   libeigen3-dev nlohmann-json3-dev libcli11-dev libtinygltf-dev libstb-dev
   libgtest-dev libgmock-dev libbenchmark-dev libnanoflann-dev
   python3-numpy python3-scipy python3-matplotlib
-  libcpp-httplib-dev chromium
+  libcpp-httplib-dev chromium nodejs npm
   pybind11-dev python3-dev python3-pytest python3-distributed
   zlib1g-dev libssl-dev
 )
@@ -51,6 +51,11 @@ if [ ${#missing[@]} -gt 0 ]; then
 else
   echo "setup: all Debian packages present"
 fi
+
+# The workstation's page (three.js) and its browser test (playwright-core), pinned by
+# web/package-lock.json. Playwright drives Debian's chromium: it downloads no browser.
+echo "setup: npm ci in web/"
+(cd "$here/web" && PLAYWRIGHT_SKIP_BROWSER_DOWNLOAD=1 npm ci --no-audit --no-fund --loglevel=error)
 
 if [ "$do_build" = 1 ]; then
   cmake -S "$here" -B "$build_dir" -G Ninja -DCMAKE_BUILD_TYPE="$build_type"

@@ -18,6 +18,7 @@
 #include "breastfit/io/landmarks_io.h"
 #include "breastfit/pipeline/register_outputs.h"
 #include "breastfit/pipeline/register_scan.h"
+#include "breastfit/serve/scan_session.h"
 #include "command_support.h"
 #include "commands.h"
 
@@ -31,13 +32,37 @@ double median(std::vector<double> v) {
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
+// The workstation's Re-fit: the scan opened once (serve::ScanSession), a full fit, then `repeat`
+// warm-started re-fits, each after moving one landmark (in turn) by 3 mm along the scan's x, y or z.
+// Returns the server time of each re-fit, ms (fit, transfer, measurements, distances): wall and
+// the thread's CPU time (the work is single-threaded: CPU time is the wall time without the
+// machine's other load).
+std::vector<double> time_refits(const std::filesystem::path& dir, const std::shared_ptr<const model::RiggedModel>& model,
+                                const fit::FitOptions& options, int repeat, bool& usable, std::vector<double>& cpu_ms) {
+  serve::ScanSession session("bench", dir / "scan.ply", (dir / "scan.ply").string(), model, options);
+  LandmarkSet lms = io::landmarks_to_mm(io::read_landmarks(dir / "landmarks.mrk.json"), session.scan().units);
+  lms.declared_units = "mm";
+  usable = session.run_fit(lms, false)->result.usable();
+  std::vector<double> ms;
+  for (int k = 0; k < repeat && usable; ++k) {
+    LandmarkSet moved = lms;
+    moved.points[k % moved.points.size()].position[k % 3] += 3.0;
+    const auto outcome = session.run_fit(moved, true);
+    if (!outcome->warm) throw InvalidInput(dir.string() + ": the re-fit was not warm-started");
+    usable = usable && outcome->result.usable();
+    ms.push_back(outcome->server_ms);
+    cpu_ms.push_back(outcome->server_cpu_ms);
+  }
+  return ms;
+}
+
 }  // namespace
 
 void register_bench(CLI::App& app, int& exit_code) {
   struct Args {
     std::string dir, template_path, config, json_out;
     int repeat = 5;
-    bool no_landmarks = false;
+    bool no_landmarks = false, refit = false;
     FitFlags fit;
   };
   auto args = std::make_shared<Args>();
@@ -48,6 +73,8 @@ void register_bench(CLI::App& app, int& exit_code) {
   sub->add_option("--repeat,-n", args->repeat, "registrations per case (the median is reported)")
       ->check(CLI::Range(1, 100));
   sub->add_flag("--no-landmarks", args->no_landmarks, "landmark-free registration");
+  sub->add_flag("--refit", args->refit,
+                "time the workstation's warm-started re-fit after moving one landmark by 3 mm (server time, ms)");
   sub->add_option("--template,-t", args->template_path, "rigged template (.glb/.gltf)");
   sub->add_option("--config", args->config, "JSON file with fit options");
   sub->add_option("--json", args->json_out, "also write every number to this JSON file");
@@ -58,6 +85,35 @@ void register_bench(CLI::App& app, int& exit_code) {
     if (args->no_landmarks) options.use_landmarks = false;
     nlohmann::json cases = nlohmann::json::array();
     std::vector<double> medians, total_medians;
+    if (args->refit) {
+      std::vector<double> all, all_cpu, cpu_medians;
+      std::printf("%-24s %12s %12s %12s %8s\n", "case", "refit_ms_med", "refit_ms_max", "cpu_ms_med", "status");
+      for (const auto& dir : experiments::find_case_dirs(args->dir)) {
+        bool usable = false;
+        std::vector<double> cpu;
+        const std::vector<double> ms = time_refits(dir, model, options, args->repeat, usable, cpu);
+        all.insert(all.end(), ms.begin(), ms.end());
+        all_cpu.insert(all_cpu.end(), cpu.begin(), cpu.end());
+        medians.push_back(median(ms));
+        cpu_medians.push_back(median(cpu));
+        std::printf("%-24s %12.1f %12.1f %12.1f %8s\n", dir.filename().string().c_str(), median(ms),
+                    ms.empty() ? 0.0 : *std::max_element(ms.begin(), ms.end()), median(cpu), usable ? "ok" : "FAILED");
+        cases.push_back({{"case", dir.filename().string()}, {"refit_ms_median", median(ms)}, {"refit_ms_all", ms},
+                         {"refit_cpu_ms_median", median(cpu)}, {"refit_cpu_ms_all", cpu}, {"usable", usable}});
+      }
+      std::printf("re-fit, median of all %zu: %.1f ms wall, %.1f ms CPU (median of the case medians: %.1f ms wall, "
+                  "%.1f ms CPU)\n",
+                  all.size(), median(all), median(all_cpu), median(medians), median(cpu_medians));
+      if (!args->json_out.empty()) {
+        std::ofstream f(args->json_out);
+        if (!f) throw IoError(args->json_out, "cannot open for writing");
+        f << nlohmann::json{{"cases", cases}, {"median_refit_ms", median(all)}, {"median_refit_cpu_ms", median(all_cpu)},
+                            {"repeat", args->repeat}}
+                 .dump(1)
+          << "\n";
+      }
+      return;
+    }
     // The outputs of every run go to one scratch directory, removed at the end.
     const std::filesystem::path scratch =
         std::filesystem::temp_directory_path() / ("breastfit-bench-" + std::to_string(::getpid()));

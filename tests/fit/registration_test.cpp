@@ -86,6 +86,32 @@ TEST(Registration, RecoversAKnownPoseWithoutNoise) {
   EXPECT_LT(r.summary.kept_mae_mm, 0.1);
 }
 
+TEST(Registration, WarmRefitStartsFromTheGivenParametersAndRunsOnlyRefine) {
+  const auto m = test::make_toy_model();
+  const auto truth = test::random_toy_pose(m, 21, 0.5);
+  const TriangleMesh scan_mesh = posed_mesh(m, truth);
+  ScanTarget scan(scan_mesh, 500);
+  const auto lms = landmarks_of(m, scan_mesh.V);
+  const FitOptions o;
+  const auto full = register_template(m, scan, lms, o);
+  ASSERT_TRUE(full.summary.usable()) << full.summary.message;
+  // From the full fit's parameters (what the workstation does after a landmark moved; here none
+  // moved): one stage, a few iterations, and no worse than the full fit.
+  const auto warm = refit_template(m, scan, lms, o, full.params);
+  ASSERT_TRUE(warm.summary.usable()) << warm.summary.message;
+  EXPECT_EQ(warm.summary.initialization, "warm start");
+  ASSERT_EQ(warm.summary.stages.size(), 1u);
+  EXPECT_EQ(warm.summary.stages[0].name, "refine");
+  EXPECT_LE(static_cast<int>(warm.summary.iterations.size()), o.refine.max_iterations);
+  EXPECT_LT(warm.summary.kept_mae_mm, full.summary.kept_mae_mm + 0.02);
+  // From the truth it stays close to it (the priors pull a noiseless toy fit only a little).
+  EXPECT_LT(refit_template(m, scan, lms, o, truth).summary.kept_mae_mm, 0.5);
+  // Parameters of another template are refused.
+  auto other = truth;
+  other.bones.pop_back();
+  EXPECT_THROW(refit_template(m, scan, lms, o, other), InvalidInput);
+}
+
 TEST(Registration, UmeyamaRecoversASimilarity) {
   Rng rng(5);
   Points src(6, 3);

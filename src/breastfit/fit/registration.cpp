@@ -106,6 +106,9 @@ std::string termination_message(const FitSummary& s) {
   }
 }
 
+void finish_fit(const model::RiggedModel& model, ScanTarget& scan, Problem& problem, const model::PoseParams& params,
+                const std::vector<LandmarkTarget>& landmarks, const FitOptions& options, FitResult& result);
+
 }  // namespace
 
 FitResult register_template(const model::RiggedModel& model, ScanTarget& scan, std::vector<LandmarkTarget> landmarks,
@@ -150,9 +153,41 @@ FitResult register_template(const model::RiggedModel& model, ScanTarget& scan, s
   if (landmarks.size() >= 3) stages.push_back(options.landmark_pose);
   for (const auto& s : {options.rigid, options.pose, options.shape, options.refine}) stages.push_back(s);
   summary.termination = minimize_stages(problem, stages, params, summary, on_iteration);
+  finish_fit(model, scan, problem, params, landmarks, options, result);
+  summary.seconds = timer.seconds();
+  return result;
+}
 
-  // Final state: every vertex at the final threshold.
-  phase.reset();
+FitResult refit_template(const model::RiggedModel& model, ScanTarget& scan, std::vector<LandmarkTarget> landmarks,
+                         const FitOptions& options, const model::PoseParams& start,
+                         const IterationCallback& on_iteration) {
+  options.validate();
+  if (start.bones.size() != model.bones.size() || start.alpha.size() != static_cast<Eigen::Index>(model.blendshapes.size()))
+    throw InvalidInput("warm start: the parameters are not those of template '" + model.name + "'");
+  Timer timer, phase;
+  FitResult result;
+  FitSummary& summary = result.summary;
+  if (!options.use_landmarks) landmarks.clear();
+  summary.initialization = "warm start";
+  summary.landmarks_used = static_cast<int>(landmarks.size());
+  model::PoseParams params = start;
+  Problem problem(model, scan, options, landmarks);
+  problem.evaluator().set_params(params);
+  summary.timings.push_back({"initialization", phase.seconds()});
+  summary.termination = minimize_stages(problem, {options.refine}, params, summary, on_iteration);
+  finish_fit(model, scan, problem, params, landmarks, options, result);
+  summary.seconds = timer.seconds();
+  return result;
+}
+
+namespace {
+
+// The end of every fit: the final state at the final threshold, the verdict, the surface detail
+// and the landmark checks.
+void finish_fit(const model::RiggedModel& model, ScanTarget& scan, Problem& problem, const model::PoseParams& params,
+                const std::vector<LandmarkTarget>& landmarks, const FitOptions& options, FitResult& result) {
+  FitSummary& summary = result.summary;
+  Timer phase;
   problem.evaluator().set_params(params);
   problem.update_correspondences(options.correspondences.max_distance_end_mm, 1, options.uses_reverse_term());
   problem.update_terms(options.refine.robust_landmarks);
@@ -194,8 +229,7 @@ FitResult register_template(const model::RiggedModel& model, ScanTarget& scan, s
         " mm): check it" + (c.factor < 1 ? "; it was down-weighted in the fit (weight x" + fmt(c.factor, 2) + ")" : ""));
   }
   result.landmarks = landmarks;
-  summary.seconds = timer.seconds();
-  return result;
 }
 
+}  // namespace
 }  // namespace breastfit::fit

@@ -47,4 +47,13 @@ FitResult register_template(const model::RiggedModel& model, ScanTarget& scan,
                             std::vector<LandmarkTarget> landmarks, const FitOptions& options,
                             const IterationCallback& on_iteration = {});
 
+/// A warm-started re-fit (e.g. after the user moved one landmark): starts from a previous fit's
+/// parameters `start` and runs only the last stage (options.refine): no initialisation, no coarse
+/// stages, no L/R swap detection. The final state, verdict, surface detail and landmark checks
+/// are those of register_template; summary.initialization is "warm start".
+/// \throws InvalidInput for invalid options or parameters of another template.
+FitResult refit_template(const model::RiggedModel& model, ScanTarget& scan, std::vector<LandmarkTarget> landmarks,
+                         const FitOptions& options, const model::PoseParams& start,
+                         const IterationCallback& on_iteration = {});
+
 }  // namespace breastfit::fit

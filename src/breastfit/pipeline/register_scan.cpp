@@ -29,7 +29,28 @@ std::string fmt(double v) {
 
 }  // namespace
 
+PreparedTarget prepare_target(const TriangleMesh& scan, const std::string& scan_name,
+                              std::optional<mesh::Units> units, const fit::FitOptions& options) {
+  PreparedTarget t;
+  t.scan_name = scan_name;
+  Timer phase;
+  t.scan = prepare_scan(scan, scan_name, units);
+  t.timings.push_back({"scan_preparation", phase.seconds()});
+  phase.reset();
+  t.target = std::make_unique<fit::ScanTarget>(t.scan.mesh_mm, options.correspondences.reverse_samples);
+  t.timings.push_back({"index_build", phase.seconds()});
+  return t;
+}
+
 RegisterResult register_scan(const RegisterRequest& req, const fit::IterationCallback& on_iteration) {
+  PreparedTarget target = prepare_target(req.scan, req.scan_name, req.units, req.options);
+  RegisterResult out = register_prepared(req, target, on_iteration);
+  out.time_s += target.timings.back().seconds;  // from scan in memory: the index build included
+  return out;
+}
+
+RegisterResult register_prepared(const RegisterRequest& req, PreparedTarget& target,
+                                 const fit::IterationCallback& on_iteration) {
   const std::shared_ptr<const model::RiggedModel> model_ptr =
       req.model ? req.model : std::make_shared<const model::RiggedModel>(model::load_default_template());
   const model::RiggedModel& model = *model_ptr;
@@ -37,9 +58,9 @@ RegisterResult register_scan(const RegisterRequest& req, const fit::IterationCal
     throw InvalidInput("the template '" + model.name +
                        "' has no landmarks and no drawings: not a breastfit torso template (docs/TEMPLATE_FORMAT.md)");
   RegisterResult out;
-  out.scan_name = req.scan_name;
+  out.scan_name = target.scan_name;
   Timer phase;
-  out.scan = prepare_scan(req.scan, req.scan_name, req.units);
+  out.scan = target.scan;
   out.warnings = out.scan.warnings;
   fit::FitOptions options = req.options;
   if (out.scan.was_point_cloud) options.correspondences.reject_boundary = false;
@@ -58,16 +79,17 @@ RegisterResult register_scan(const RegisterRequest& req, const fit::IterationCal
     out.warnings.push_back("landmarks missing (the fit uses those present): " + missing);
   }
 
-  out.timings.push_back({"scan_preparation", phase.seconds()});
-  Timer timer;  // from scan and landmarks in memory to fitted parameters
-  fit::ScanTarget scan(out.scan.mesh_mm, options.correspondences.reverse_samples);
-  out.timings.push_back({"index_build", timer.seconds()});
+  out.timings = target.timings;
+  out.timings.front().seconds += phase.seconds();  // the landmarks' preparation
+  Timer timer;  // from the index to fitted parameters
+  fit::ScanTarget& scan = *target.target;
   if (const auto d = diagnose_landmark_frame(landmarks_mm, scan))
     throw InvalidInput(req.landmarks_name + ": the landmarks lie " + fmt(d->median_distance_mm) +
                        " mm from the scan (median); they look " + d->mistake + ": undone, they would lie " +
                        fmt(d->corrected_median_mm) +
                        " mm from it. Check the file's coordinate system and units");
-  out.fit = fit::register_template(model, scan, targets, options, on_iteration);
+  out.fit = req.warm_start ? fit::refit_template(model, scan, targets, options, *req.warm_start, on_iteration)
+                           : fit::register_template(model, scan, targets, options, on_iteration);
   out.time_s = timer.seconds();
   for (const auto& p : out.fit.summary.timings) out.timings.push_back(p);
   phase.reset();

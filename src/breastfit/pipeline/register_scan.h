@@ -33,6 +33,9 @@ struct RegisterRequest {
   /// What the command read and how it ran (report.json's provenance and run blocks); its
   /// options are replaced by `options` (the effective ones). nullopt: no such blocks.
   std::optional<Provenance> provenance;
+  /// A previous fit's parameters to start from (a re-fit after a landmark moved): only the last
+  /// stage runs (fit::refit_template). nullopt: the full registration.
+  std::optional<model::PoseParams> warm_start;
 };
 
 struct RegisterResult {
@@ -61,5 +64,26 @@ struct RegisterResult {
 /// then not usable, fit.summary.termination Aborted). \throws InvalidInput for bad scans,
 /// landmarks or options; IoError when the default template cannot be read.
 RegisterResult register_scan(const RegisterRequest& request, const fit::IterationCallback& on_iteration = {});
+
+/// A scan prepared once for several registrations (the workstation: one scan, many fits): the
+/// scan in mm and its closest-point index.
+struct PreparedTarget {
+  std::string scan_name;
+  PreparedScan scan;
+  std::unique_ptr<fit::ScanTarget> target;
+  std::vector<fit::PhaseTime> timings;  ///< scan_preparation, index_build
+};
+
+/// Prepares `scan` (file units) and builds its index with `options`' reverse-term samples.
+/// \throws InvalidInput as register_scan for a bad scan.
+PreparedTarget prepare_target(const TriangleMesh& scan, const std::string& scan_name,
+                              std::optional<mesh::Units> units, const fit::FitOptions& options = {});
+
+/// register_scan on a prepared scan: `request.scan` and `request.units` are not used (the
+/// target's are). The target's normal sign is set by the fit: one fit per target at a time.
+/// result.time_s is the fit's own time (the index was built before); timings start with the
+/// target's. \throws as register_scan.
+RegisterResult register_prepared(const RegisterRequest& request, PreparedTarget& target,
+                                 const fit::IterationCallback& on_iteration = {});
 
 }  // namespace breastfit::pipeline

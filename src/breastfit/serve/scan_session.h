@@ -1,0 +1,103 @@
+#pragma once
+/// \file One scan open in the workstation: read and indexed once, then fitted as often as the
+/// user asks — one fit at a time (a second request is refused, not queued), on a worker thread,
+/// with its progress readable at any time and a cancel that ends it after the current iteration.
+#include <atomic>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "breastfit/fit/fit_options.h"
+#include "breastfit/mesh/body_frame.h"
+#include "breastfit/mesh/landmarks.h"
+#include "breastfit/model/rigged_model.h"
+#include "breastfit/pipeline/register_scan.h"
+
+namespace breastfit::serve {
+
+/// A finished fit as the page sees it.
+struct FitOutcome {
+  pipeline::RegisterResult result;
+  std::vector<double> distances_mm;  ///< per fitted vertex: distance to the scan
+  double server_ms = 0;              ///< the fit request's wall time in the server (fit, transfer, measurements)
+  /// The same work's CPU time on its (single) thread: what server_ms is on an idle machine, and
+  /// independent of other processes' load.
+  double server_cpu_ms = 0;
+  bool warm = false;                 ///< warm-started from the previous fit
+  int generation = 0;                ///< 1 for the session's first fit, then 2, 3, ...
+};
+
+enum class FitState { Idle, Running, Done, Failed, Cancelled };
+const char* to_string(FitState s);
+
+/// What the page polls.
+struct FitStatus {
+  FitState state = FitState::Idle;
+  std::string stage;            ///< the running stage
+  int iterations = 0;           ///< iterations so far (all stages)
+  std::string message;          ///< the failure's or cancellation's reason, or the verdict
+  std::shared_ptr<const FitOutcome> outcome;  ///< the last finished fit (may be older than state)
+};
+
+class ScanSession {
+ public:
+  /// Reads the scan and builds its index (the slow part, done once).
+  /// \throws InvalidInput / IoError naming the file for a bad scan
+  ScanSession(std::string id, std::filesystem::path scan_path, std::string display_name,
+              std::shared_ptr<const model::RiggedModel> model, fit::FitOptions options = {});
+  /// Cancels a running fit and waits for it.
+  ~ScanSession();
+  ScanSession(const ScanSession&) = delete;
+  ScanSession& operator=(const ScanSession&) = delete;
+
+  const std::string& id() const { return id_; }
+  const std::string& name() const { return name_; }
+  const std::filesystem::path& scan_path() const { return scan_path_; }
+  const pipeline::PreparedScan& scan() const { return target_.scan; }
+  const model::RiggedModel& model() const { return *model_; }
+  /// The scan's body frame from its shape (mesh::body_frame_from_principal_axes): the page's
+  /// standard views before a fit.
+  const mesh::BodyFrame& body_frame() const { return frame_; }
+  /// Runs `f` on the scan's closest-point index while no fit of this scan runs (a fit changes the
+  /// index's normal sign; one started meanwhile waits for `f`). Returns false, without calling
+  /// `f`, when a fit is running.
+  bool with_target(const std::function<void(const fit::ScanTarget&)>& f);
+
+  /// Starts a fit with `landmarks_mm` (positions in mm, scan frame). `warm`: start from the last
+  /// usable fit's parameters (pipeline::RegisterRequest::warm_start) when there is one.
+  /// Returns false (and starts nothing) while another fit of this scan runs.
+  bool start_fit(LandmarkSet landmarks_mm, bool warm);
+  /// Runs a fit on the calling thread (what start_fit's worker runs; benchmarks call it).
+  /// \throws InvalidInput for bad landmarks
+  std::shared_ptr<const FitOutcome> run_fit(const LandmarkSet& landmarks_mm, bool warm);
+  /// Asks a running fit to stop after its current iteration.
+  void cancel();
+  /// Waits for a running fit to end.
+  void wait();
+  FitStatus status() const;
+
+ private:
+  void finish(FitState state, std::string message, std::shared_ptr<const FitOutcome> outcome);
+
+  std::string id_, name_;
+  std::filesystem::path scan_path_;
+  std::shared_ptr<const model::RiggedModel> model_;
+  fit::FitOptions options_;
+  pipeline::PreparedTarget target_;
+  mesh::BodyFrame frame_;
+
+  mutable std::mutex mutex_;
+  std::mutex target_mutex_;  // held while the index is used (a fit, with_target)
+  FitStatus status_;
+  std::optional<model::PoseParams> last_params_;  // of the last usable fit
+  int generation_ = 0;
+  std::atomic<bool> cancel_{false};
+  std::thread worker_;
+};
+
+}  // namespace breastfit::serve

@@ -1,0 +1,361 @@
+// HTTP-level tests of `breastfit serve`'s server: real requests with httplib::Client on
+// 127.0.0.1 (an ephemeral port) against a workspace holding a synthetic case.
+#include "breastfit/serve/server.h"
+
+#include <httplib.h>
+
+#include <algorithm>
+#include <chrono>
+#include <fstream>
+#include <thread>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "breastfit/io/markups.h"
+#include "breastfit/pipeline/register_outputs.h"
+#include "breastfit/synth/case_writer.h"
+#include "breastfit/synth/synth_case.h"
+#include "support/default_template.h"
+#include "support/test_paths.h"
+
+namespace breastfit::serve {
+namespace {
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+// A workspace with one synthetic case (cases/a/scan.ply + landmarks.mrk.json), a second copy of
+// it (cases/b), a file outside it and a page directory.
+struct Fixture {
+  fs::path dir = test::temp_dir();
+  fs::path workspace = dir / "ws";
+  fs::path web = dir / "web";
+  std::vector<NamedPoint> landmarks_mm;
+  Fixture() {
+    synth::SynthOptions o;
+    o.seed = 3;
+    const synth::SynthCase c = synth::make_case(*test::default_template(), o);
+    synth::write_case(workspace / "cases" / "a", c, false);
+    synth::write_case(workspace / "cases" / "b", c, false);
+    landmarks_mm = c.input_landmarks;
+    fs::create_directories(web);
+    std::ofstream(web / "index.html") << "<!doctype html><title>breastfit</title>";
+    std::ofstream(dir / "secret.ply") << "not yours";
+    fs::create_symlink(dir / "secret.ply", workspace / "escape.ply");
+  }
+};
+
+Fixture& fixture() {
+  static Fixture f;
+  return f;
+}
+
+// A server on its own thread, stopped and joined at the end of the test.
+struct RunningServer {
+  std::unique_ptr<Server> server;
+  std::thread thread;
+  explicit RunningServer(ServerOptions o) {
+    o.workspace = fixture().workspace;
+    o.web_root = fixture().web;
+    o.model = test::default_template();
+    server = std::make_unique<Server>(std::move(o));
+    thread = std::thread([this] { server->run(); });
+  }
+  ~RunningServer() {
+    server->stop();
+    thread.join();
+  }
+  httplib::Client client(bool with_token = true) const {
+    httplib::Client c("127.0.0.1", server->port());
+    c.set_read_timeout(60, 0);
+    if (with_token) c.set_default_headers({{"X-Breastfit-Token", server->token()}});
+    return c;
+  }
+};
+
+json body(const httplib::Result& r) { return json::parse(r->body); }
+
+json landmarks_json() {
+  json a = json::array();
+  for (const auto& p : fixture().landmarks_mm)
+    a.push_back({{"name", p.name}, {"position", {p.position.x(), p.position.y(), p.position.z()}}});
+  return a;
+}
+
+std::string open_scan(httplib::Client& c, const std::string& path) {
+  const auto r = c.Post("/api/scans", json{{"path", path}}.dump(), "application/json");
+  EXPECT_TRUE(r);
+  EXPECT_EQ(r->status, 200) << r->body;
+  return body(r)["id"].get<std::string>();
+}
+
+json wait_fit(httplib::Client& c, const std::string& id) {
+  for (int i = 0; i < 1200; ++i) {
+    const auto r = c.Get(("/api/scans/" + id + "/fit").c_str());
+    EXPECT_EQ(r->status, 200);
+    json j = body(r);
+    if (j["state"] != "running") return j;
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  ADD_FAILURE() << "the fit did not end within 60 s";
+  return {};
+}
+
+TEST(Server, EveryRequestNeedsTheToken) {
+  RunningServer s({});
+  auto anonymous = s.client(false);
+  for (const char* path : {"/", "/api/files", "/web/index.html"}) {
+    const auto r = anonymous.Get(path);
+    ASSERT_TRUE(r);
+    EXPECT_EQ(r->status, 403) << path;
+    EXPECT_NE(r->body.find("no access token"), std::string::npos) << r->body;
+  }
+  const auto wrong = anonymous.Get("/api/files?token=00000000000000000000000000000000");
+  EXPECT_EQ(wrong->status, 403);
+  EXPECT_NE(wrong->body.find("wrong access token"), std::string::npos);
+
+  // The printed URL: the page is served and a cookie carries the token from then on.
+  const auto page = anonymous.Get(("/?token=" + s.server->token()).c_str());
+  ASSERT_EQ(page->status, 200);
+  EXPECT_NE(page->body.find("breastfit"), std::string::npos);
+  const std::string cookie = page->get_header_value("Set-Cookie");
+  EXPECT_NE(cookie.find("HttpOnly"), std::string::npos);
+  EXPECT_NE(cookie.find("SameSite=Strict"), std::string::npos);
+  const auto with_cookie = anonymous.Get("/api/files", {{"Cookie", cookie.substr(0, cookie.find(';'))}});
+  EXPECT_EQ(with_cookie->status, 200);
+  auto c = s.client();
+  const auto files = c.Get("/api/files");
+  ASSERT_EQ(files->status, 200);
+  const json list = body(files)["files"];
+  EXPECT_NE(std::find(list.begin(), list.end(), "cases/a/scan.ply"), list.end());
+  EXPECT_EQ(std::find(list.begin(), list.end(), "escape.ply"), list.end());  // a link leading out
+}
+
+TEST(Server, HostAndOriginMustBeThisServer) {
+  RunningServer s({});
+  auto c = s.client();
+  // DNS rebinding: a page of evil.example whose name now resolves to 127.0.0.1.
+  const auto rebound = c.Get("/api/files", {{"Host", "evil.example:" + std::to_string(s.server->port())}});
+  EXPECT_EQ(rebound->status, 403);
+  EXPECT_NE(rebound->body.find("Host"), std::string::npos);
+  const auto cross = c.Get("/api/files", {{"Origin", "http://evil.example"}});
+  EXPECT_EQ(cross->status, 403);
+  const auto same = c.Get("/api/files", {{"Origin", "http://127.0.0.1:" + std::to_string(s.server->port())}});
+  EXPECT_EQ(same->status, 200);
+}
+
+TEST(Server, PathsStayInTheWorkspace) {
+  RunningServer s({});
+  auto c = s.client();
+  for (const std::string bad : {"../secret.ply", "/etc/passwd", "cases/../../secret.ply", "escape.ply"}) {
+    const auto r = c.Post("/api/scans", json{{"path", bad}}.dump(), "application/json");
+    EXPECT_EQ(r->status, 400) << bad;
+    EXPECT_NE(body(r)["error"].get<std::string>().find("path '" + bad + "'"), std::string::npos) << r->body;
+  }
+  EXPECT_EQ(c.Get("/api/download?path=..%2Fsecret.ply")->status, 400);
+  EXPECT_EQ(c.Get("/api/download?path=escape.ply")->status, 400);
+  EXPECT_EQ(c.Post("/api/upload?name=..%2Fplanted.ply", "x", "application/octet-stream")->status, 400);
+  EXPECT_FALSE(fs::exists(fixture().dir / "planted.ply"));
+  // The page's files are confined to the web root the same way.
+  EXPECT_NE(c.Get("/web/..%2F..%2Fsecret.ply")->status, 200);
+  // The export directory too.
+  const std::string id = open_scan(c, "cases/a/scan.ply");
+  EXPECT_EQ(c.Post(("/api/scans/" + id + "/export").c_str(), json{{"dir", "../out"}}.dump(), "application/json")->status,
+            400);
+}
+
+TEST(Server, UploadsAreLimitedAndNeverOverwrite) {
+  ServerOptions o;
+  o.max_upload_bytes = 1024;
+  RunningServer s(o);
+  auto c = s.client();
+  const auto big = c.Post("/api/upload?name=uploads%2Fbig.ply", std::string(4096, 'x'), "application/octet-stream");
+  ASSERT_TRUE(big);
+  EXPECT_EQ(big->status, 413);
+  EXPECT_NE(big->body.find("too large"), std::string::npos) << big->body;
+  EXPECT_FALSE(fs::exists(fixture().workspace / "uploads" / "big.ply"));
+  const auto small = c.Post("/api/upload?name=uploads%2Fsmall.txt", "hello", "application/octet-stream");
+  EXPECT_EQ(small->status, 201) << small->body;
+  const auto again = c.Post("/api/upload?name=uploads%2Fsmall.txt", "other", "application/octet-stream");
+  EXPECT_EQ(again->status, 409);
+  std::ifstream in(fixture().workspace / "uploads" / "small.txt");
+  std::string text;
+  in >> text;
+  EXPECT_EQ(text, "hello");
+}
+
+TEST(Server, ABadFileGivesAMessageAndTheServerKeepsServing) {
+  RunningServer s({});
+  auto c = s.client();
+  ASSERT_EQ(c.Post("/api/upload?name=bad%2Fhostile.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 99999999999\nend_header\n",
+                   "application/octet-stream")->status, 201);
+  const auto r = c.Post("/api/scans", json{{"path", "bad/hostile.ply"}}.dump(), "application/json");
+  EXPECT_EQ(r->status, 400);
+  EXPECT_NE(body(r)["error"].get<std::string>().find("hostile.ply"), std::string::npos) << r->body;
+  EXPECT_EQ(c.Post("/api/scans", "{not json", "application/json")->status, 400);
+  const std::string id = open_scan(c, "cases/a/scan.ply");
+  const auto bad_landmarks = c.Post(("/api/scans/" + id + "/fit").c_str(),
+                                    json{{"landmarks", {{{"name", "nipple_R"}, {"position", {1, "x", 3}}}}}}.dump(),
+                                    "application/json");
+  EXPECT_EQ(bad_landmarks->status, 400);
+  EXPECT_EQ(c.Get("/api/files")->status, 200);
+}
+
+TEST(Server, OneFitPerScanAtATimeAndCancel) {
+  ServerOptions o;
+  // A fit long enough to be caught running: no convergence test ends a stage early.
+  o.fit_options.solver.function_tolerance = 1e-300;
+  o.fit_options.solver.gradient_tolerance = 0;
+  o.fit_options.solver.parameter_tolerance = 0;
+  for (auto* st : o.fit_options.stages()) st->max_iterations = 400;
+  RunningServer s(o);
+  auto a = s.client();
+  auto b = s.client();  // a second window
+  const std::string id = open_scan(a, "cases/b/scan.ply");
+  EXPECT_EQ(open_scan(b, "cases/b/scan.ply"), id);  // the same session: read and indexed once
+  const std::string fit = "/api/scans/" + id + "/fit";
+  const auto started = a.Post(fit.c_str(), json{{"landmarks", landmarks_json()}}.dump(), "application/json");
+  ASSERT_EQ(started->status, 202) << started->body;
+  const auto refused = b.Post(fit.c_str(), json{{"landmarks", landmarks_json()}}.dump(), "application/json");
+  EXPECT_EQ(refused->status, 409);
+  EXPECT_NE(body(refused)["error"].get<std::string>().find("already running"), std::string::npos);
+  // Another scan is not blocked.
+  const std::string other = open_scan(b, "cases/a/scan.ply");
+  EXPECT_NE(other, id);
+  EXPECT_EQ(b.Get(("/api/scans/" + other + "/fit").c_str())->status, 200);
+
+  EXPECT_EQ(b.Post(("/api/scans/" + id + "/cancel").c_str(), "", "application/json")->status, 200);
+  const json end = wait_fit(a, id);
+  EXPECT_EQ(end["state"], "cancelled") << end.dump();
+  EXPECT_LT(end["iterations"].get<int>(), 5 * 400);
+  EXPECT_TRUE(end["result"].is_null());
+  EXPECT_EQ(b.Post(fit.c_str(), "{}", "application/json")->status, 400);  // no landmarks
+}
+
+TEST(Server, FitWarmRefitAndExport) {
+  RunningServer s({});
+  auto c = s.client();
+  const std::string id = open_scan(c, "cases/a/scan.ply");
+  const std::string fit = "/api/scans/" + id + "/fit";
+  ASSERT_EQ(c.Post(fit.c_str(), json{{"landmarks", landmarks_json()}}.dump(), "application/json")->status, 202);
+  const json first = wait_fit(c, id);
+  ASSERT_EQ(first["state"], "done") << first.dump();
+  const json& r = first["result"];
+  EXPECT_TRUE(r["usable"].get<bool>());
+  EXPECT_FALSE(r["warm"].get<bool>());
+  EXPECT_GE(r["drawings"].size(), 2u);
+  EXPECT_EQ(r["drawings"][0]["colour"].get<std::string>().size(), 7u);
+  EXPECT_EQ(r["model_landmarks"].size(), 12u);
+  EXPECT_EQ(r["landmark_checks"].size(), 12u);
+  EXPECT_EQ(r["fitted"]["distances_mm"].size() * 3, r["fitted"]["vertices"].size());
+
+  // Move one landmark by 4 mm and re-fit from the previous parameters.
+  json moved = landmarks_json();
+  moved[0]["position"][2] = moved[0]["position"][2].get<double>() + 4.0;
+  ASSERT_EQ(c.Post(fit.c_str(), json{{"landmarks", moved}, {"warm", true}}.dump(), "application/json")->status, 202);
+  const json second = wait_fit(c, id);
+  ASSERT_EQ(second["state"], "done") << second.dump();
+  EXPECT_TRUE(second["result"]["warm"].get<bool>());
+  EXPECT_TRUE(second["result"]["usable"].get<bool>());
+  EXPECT_EQ(second["result"]["generation"], 2);
+
+  // Export: the output set of `register`; an existing set is not overwritten without asking.
+  const std::string exp = "/api/scans/" + id + "/export";
+  const auto written = c.Post(exp.c_str(), json{{"dir", "fits/a"}}.dump(), "application/json");
+  ASSERT_EQ(written->status, 200) << written->body;
+  const fs::path out = fixture().workspace / "fits" / "a";
+  for (const auto& name : pipeline::register_output_names()) EXPECT_TRUE(fs::exists(out / name)) << name;
+  const Markups drawings = io::read_markups(out / "drawings.mrk.json");
+  EXPECT_GE(drawings.curves.size(), 2u);
+  const auto refused = c.Post(exp.c_str(), json{{"dir", "fits/a"}}.dump(), "application/json");
+  EXPECT_EQ(refused->status, 409);
+  EXPECT_TRUE(body(refused)["exists"].get<bool>());
+  EXPECT_EQ(c.Post(exp.c_str(), json{{"dir", "fits/a"}, {"overwrite", true}}.dump(), "application/json")->status, 200);
+  // Into the scan's own folder, whose landmarks.mrk.json was imported: an input is never
+  // overwritten, even when the user confirms.
+  ASSERT_EQ(c.Post(("/api/scans/" + id + "/landmarks/import").c_str(),
+                   json{{"path", "cases/a/landmarks.mrk.json"}}.dump(), "application/json")->status, 200);
+  const auto input = c.Post(exp.c_str(), json{{"dir", "cases/a"}, {"overwrite", true}}.dump(), "application/json");
+  EXPECT_EQ(input->status, 400);
+  EXPECT_NE(body(input)["error"].get<std::string>().find("landmarks.mrk.json"), std::string::npos) << input->body;
+  EXPECT_FALSE(fs::exists(fixture().workspace / "cases" / "a" / "report.json"));
+  const auto report = c.Get("/api/download?path=fits%2Fa%2Freport.html");
+  EXPECT_EQ(report->status, 200);
+  EXPECT_NE(report->body.find("<html"), std::string::npos);
+}
+
+// Standing <-> supine: two fitted scans of one patient; here the same synthetic scan twice, so the
+// drawings mapped from one must land on the other's own drawings.
+TEST(Server, MapsTheDrawingsOfAnotherFittedScan) {
+  RunningServer s({});
+  auto c = s.client();
+  const std::string a = open_scan(c, "cases/a/scan.ply");
+  const std::string b = open_scan(c, "cases/b/scan.ply");
+  const std::string map = "/api/scans/" + b + "/map";
+  const auto early = c.Post(map.c_str(), json{{"from", a}}.dump(), "application/json");
+  EXPECT_EQ(early->status, 400);
+  EXPECT_NE(body(early)["error"].get<std::string>().find("usable fit first"), std::string::npos) << early->body;
+  json fits;
+  for (const std::string& id : {a, b}) {
+    ASSERT_EQ(c.Post(("/api/scans/" + id + "/fit").c_str(), json{{"landmarks", landmarks_json()}}.dump(),
+                     "application/json")->status, 202);
+    fits[id] = wait_fit(c, id);
+    ASSERT_EQ(fits[id]["state"], "done");
+  }
+  const json list = body(c.Get("/api/scans"))["scans"];
+  ASSERT_GE(list.size(), 2u);
+  EXPECT_EQ(c.Post(map.c_str(), json{{"from", b}}.dump(), "application/json")->status, 400);  // itself
+  const auto mapped = c.Post(map.c_str(), json{{"from", a}}.dump(), "application/json");
+  ASSERT_EQ(mapped->status, 200) << mapped->body;
+  const json curves = body(mapped)["curves"];
+  const json own = fits[b]["result"]["drawings"];
+  ASSERT_EQ(curves.size(), own.size());
+  for (size_t k = 0; k < curves.size(); ++k) {
+    EXPECT_EQ(curves[k]["name"], own[k]["name"]);
+    EXPECT_EQ(curves[k]["colour"], own[k]["colour"]);
+    // Every mapped point lies near B's own drawing of the same name.
+    const auto& p = curves[k]["points"];
+    const auto& q = own[k]["points"];
+    double worst = 0;
+    for (size_t i = 0; i < p.size(); i += 3) {
+      double best = 1e9;
+      for (size_t j = 0; j < q.size(); j += 3) {
+        const Vec3 d(p[i].get<double>() - q[j].get<double>(), p[i + 1].get<double>() - q[j + 1].get<double>(),
+                     p[i + 2].get<double>() - q[j + 2].get<double>());
+        best = std::min(best, d.norm());
+      }
+      worst = std::max(worst, best);
+    }
+    EXPECT_LT(worst, 5.0) << curves[k]["name"];
+    EXPECT_GT(curves[k]["confidence"]["high"].get<int>(), 0) << curves[k]["name"];
+  }
+}
+
+TEST(Server, LandmarksImportAndSave) {
+  RunningServer s({});
+  auto c = s.client();
+  const std::string id = open_scan(c, "cases/a/scan.ply");
+  const auto imported = c.Post(("/api/scans/" + id + "/landmarks/import").c_str(),
+                               json{{"path", "cases/a/landmarks.mrk.json"}}.dump(), "application/json");
+  ASSERT_EQ(imported->status, 200) << imported->body;
+  EXPECT_EQ(body(imported)["landmarks"].size(), 12u);
+  const std::string save = "/api/scans/" + id + "/landmarks/export";
+  const json req = {{"path", "placed/l.mrk.json"}, {"landmarks", body(imported)["landmarks"]}};
+  ASSERT_EQ(c.Post(save.c_str(), req.dump(), "application/json")->status, 200);
+  EXPECT_EQ(io::read_markups(fixture().workspace / "placed" / "l.mrk.json").points.size(), 12u);
+  EXPECT_EQ(c.Post(save.c_str(), req.dump(), "application/json")->status, 409);
+  EXPECT_EQ(c.Post(save.c_str(), json{{"path", "cases/a/scan.ply"}, {"landmarks", json::array()}, {"overwrite", true}}.dump(),
+                   "application/json")->status, 400);
+}
+
+TEST(Server, StopEndsRun) {
+  auto s = std::make_unique<RunningServer>(ServerOptions{});
+  const int port = s->server->port();
+  s.reset();  // stop() + join: returns
+  httplib::Client c("127.0.0.1", port);
+  c.set_connection_timeout(1, 0);
+  EXPECT_FALSE(c.Get("/"));
+}
+
+}  // namespace
+}  // namespace breastfit::serve

@@ -1,0 +1,56 @@
+#include "breastfit/serve/session_json.h"
+
+#include <cstring>
+
+#include <gtest/gtest.h>
+
+#include "breastfit/core/errors.h"
+
+namespace breastfit::serve {
+namespace {
+
+TEST(SessionJson, LandmarksRoundTripAndBadEntries) {
+  const std::vector<NamedPoint> pts = {{"nipple_R", Vec3(1, 2, 3)}, {"xiphoid", Vec3(-4, 5.5, 6)}};
+  const LandmarkSet back = landmarks_from_json(landmarks_to_json(pts));
+  ASSERT_EQ(back.points.size(), 2u);
+  EXPECT_EQ(back.points[1].name, "xiphoid");
+  EXPECT_EQ(back.points[1].position, Vec3(-4, 5.5, 6));
+  EXPECT_EQ(back.declared_units, "mm");
+  using nlohmann::json;
+  EXPECT_THROW(landmarks_from_json(json::object()), InvalidInput);
+  EXPECT_THROW(landmarks_from_json(json::parse(R"([{"name": "x"}])")), InvalidInput);
+  EXPECT_THROW(landmarks_from_json(json::parse(R"([{"name": "x", "position": [1, 2]}])")), InvalidInput);
+  EXPECT_THROW(landmarks_from_json(json::parse(R"([{"name": "x", "position": [1, "2", 3]}])")), InvalidInput);
+}
+
+TEST(SessionJson, ScanMeshBinaryLayout) {
+  pipeline::PreparedScan s;
+  s.mesh_mm.V.resize(3, 3);
+  s.mesh_mm.V << 0, 0, 0, 1, 0, 0, 0, 2.5, 0;
+  s.mesh_mm.F.resize(1, 3);
+  s.mesh_mm.F << 0, 1, 2;
+  const std::string b = scan_mesh_binary(s);
+  ASSERT_EQ(b.size(), 8u + 9 * 4 + 3 * 4);
+  uint32_t nv = 0, nf = 0, c = 0;
+  float y = 0;
+  std::memcpy(&nv, b.data(), 4);
+  std::memcpy(&nf, b.data() + 4, 4);
+  std::memcpy(&y, b.data() + 8 + 7 * 4, 4);
+  std::memcpy(&c, b.data() + 8 + 9 * 4 + 2 * 4, 4);
+  EXPECT_EQ(nv, 3u);
+  EXPECT_EQ(nf, 1u);
+  EXPECT_FLOAT_EQ(y, 2.5f);
+  EXPECT_EQ(c, 2u);
+}
+
+TEST(SessionJson, BodyFrameAxes) {
+  mesh::BodyFrame f;
+  f.body_to_world.block<3, 1>(0, 3) = Vec3(1, 2, 3);
+  const auto j = to_json(f);
+  EXPECT_EQ(j["origin"][2], 3.0);
+  EXPECT_EQ(j["superior"][2], 1.0);
+  EXPECT_EQ(j["source"], "landmarks");
+}
+
+}  // namespace
+}  // namespace breastfit::serve
