@@ -23,10 +23,14 @@ packages=(
   libeigen3-dev nlohmann-json3-dev libcli11-dev libtinygltf-dev libstb-dev
   libgtest-dev libgmock-dev libbenchmark-dev libnanoflann-dev
   python3-numpy python3-scipy python3-matplotlib
-  libcpp-httplib-dev chromium nodejs npm
+  libcpp-httplib-dev chromium
   pybind11-dev python3-dev python3-pytest python3-distributed
   zlib1g-dev libssl-dev
 )
+
+# Node.js and npm for the workstation's page: Debian's, unless a node with npm is already there
+# (another distribution of Node.js may provide npm itself and conflict with Debian's package).
+if ! command -v npm >/dev/null 2>&1; then packages+=(nodejs npm); fi
 
 missing=()
 for p in "${packages[@]}"; do
