@@ -33,7 +33,8 @@ void add_fit_flags(CLI::App& sub, FitFlags& f) {
   g->add_flag("--no-surface-detail", f.no_surface_detail,
               "the paper's model only: no smooth normal offsets fitted after the parameters");
   sub.add_option("--threads", f.threads,
-                 "threads for the registration (default 0: all cores); the results do not depend on it")
+                 "threads for the registration (default 0: the cores not busy with other work, "
+                 "docs/PERFORMANCE.md); the results do not depend on it")
       ->check(CLI::Range(0, 1024));
 }
 

@@ -22,6 +22,7 @@ Index num_chunks(Index n, Index chunk_size);
 /// of [0, n), on up to resolve_threads(threads) threads: concurrently and in any order, so fn
 /// writes only to the chunk's own slots. When fn throws, the exception of the lowest chunk is
 /// rethrown once every chunk has run.
-void for_each_chunk(Index n, Index chunk_size, int threads, const std::function<void(Index chunk, Index begin, Index end)>& fn);
+void for_each_chunk(Index n, Index chunk_size, int threads,
+                    const std::function<void(Index chunk, Index begin, Index end)>& fn);
 
 }  // namespace breastfit::fit
