@@ -8,6 +8,8 @@
 
 #include "breastfit/cohort/batch.h"
 #include "breastfit/core/timer.h"
+#include "breastfit/model/template_library.h"
+#include "breastfit/pipeline/provenance.h"
 #include "command_support.h"
 #include "commands.h"
 #include "exit_codes.h"
@@ -76,6 +78,9 @@ void register_batch(CLI::App& app, int& exit_code) {
     cohort::BatchOptions options;
     options.jobs = args->jobs > 0 ? args->jobs : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
     options.run.model = std::make_shared<const model::RiggedModel>(load_template(args->template_path));
+    options.run.template_path =
+        args->template_path.empty() ? model::default_template_path() : std::filesystem::path(args->template_path);
+    options.run.command_line = pipeline::shell_command_line(command_line());
     options.run.fit = load_fit_options(args->config, args->fit);
     options.run.units = parse_units_flag(args->units);
     options.run.ignore_landmarks = args->no_landmarks;

@@ -59,17 +59,12 @@ void register_register(CLI::App& app, int& exit_code) {
     req.options = load_fit_options(args->config, args->fit);
     if (args->no_landmarks) req.options.use_landmarks = false;
 
-    pipeline::Provenance provenance;
-    provenance.version = pipeline::breastfit_version();
-    provenance.started_utc = pipeline::utc_now_iso8601();
-    provenance.command_line = pipeline::shell_command_line(command_line());
-    provenance.inputs.push_back(pipeline::hash_input("scan", args->scan));
-    if (!args->landmarks.empty() && !args->no_landmarks)
-      provenance.inputs.push_back(pipeline::hash_input("landmarks", args->landmarks));
-    provenance.inputs.push_back(pipeline::hash_input(
-        "template", args->template_path.empty() ? model::default_template_path() : fs::path(args->template_path)));
-    if (!args->config.empty()) provenance.inputs.push_back(pipeline::hash_input("config", args->config));
-    req.provenance = std::move(provenance);
+    req.provenance = pipeline::start_provenance(
+        pipeline::shell_command_line(command_line()),
+        {{"scan", args->scan},
+         {"landmarks", args->no_landmarks ? fs::path() : fs::path(args->landmarks)},
+         {"template", args->template_path.empty() ? model::default_template_path() : fs::path(args->template_path)},
+         {"config", args->config}});
 
     const auto result = pipeline::register_scan(req, progress_printer(args->quiet));
     if (!result.usable()) {

@@ -1,9 +1,12 @@
 #pragma once
 /// \file What the binding's files share: numpy ↔ Eigen conversions with validation, Python ↔
 /// JSON, the template handle, and one bind_* function per bound concept (each in its own file).
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 #include <pybind11/numpy.h>
@@ -16,6 +19,7 @@
 #include "breastfit/mesh/triangle_mesh.h"
 #include "breastfit/mesh/units.h"
 #include "breastfit/model/rigged_model.h"
+#include "breastfit/pipeline/provenance.h"
 
 namespace breastfit::python {
 namespace py = pybind11;
@@ -23,6 +27,7 @@ namespace py = pybind11;
 /// A loaded template, shared (never copied) by every fit that uses it.
 struct Template {
   std::shared_ptr<const model::RiggedModel> model;
+  std::filesystem::path path;  ///< the file it was loaded from (report.json's provenance); empty: unknown
 };
 
 /// An (n, 3) float array as points. \throws InvalidInput (→ ValueError) naming `what` for another
@@ -64,6 +69,12 @@ void set_installed_template(const std::filesystem::path& path);
 
 /// The template a call uses: `value` (a Template) or the shipped default when None (loaded once).
 std::shared_ptr<const model::RiggedModel> template_from_python(const py::handle& value);
+/// The file of the template `template_from_python(value)` gives: the shipped default's for None,
+/// the Template's own path otherwise (empty when unknown).
+std::filesystem::path template_path_from_python(const py::handle& value);
+/// The provenance of a fit started now from Python: the command line is the interpreter's
+/// sys.argv; `files` as pipeline::start_provenance. Call with the GIL held.
+pipeline::Provenance provenance_from_python(const std::vector<std::pair<std::string, std::filesystem::path>>& files);
 
 /// Maps the library's exceptions to Python's (the only place that does).
 void register_exceptions(py::module_& m);

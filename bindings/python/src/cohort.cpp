@@ -29,6 +29,8 @@ void bind_cohort(py::module_& m) {
          const py::handle& units, bool force, bool report_html, bool ignore_landmarks) {
         cohort::CaseRunOptions o;
         o.model = template_from_python(template_);
+        o.template_path = template_path_from_python(template_);
+        o.command_line = provenance_from_python({}).command_line;
         if (!options.is_none()) fit::update_from_json(o.fit, json_from_python(options, "options"));
         o.units = units_from_python(units);
         o.force = force;

@@ -187,4 +187,20 @@ std::shared_ptr<const model::RiggedModel> template_from_python(const py::handle&
   return value.cast<const Template&>().model;
 }
 
+std::filesystem::path template_path_from_python(const py::handle& value) {
+  if (value.is_none()) {
+    const char* env = std::getenv("BREASTFIT_TEMPLATE");
+    const bool installed = (!env || !*env) && !installed_template().empty();
+    return installed ? installed_template() : model::default_template_path();
+  }
+  if (!py::isinstance<Template>(value)) throw InvalidInput("template: expected a breastfit.Template or None");
+  return value.cast<const Template&>().path;
+}
+
+pipeline::Provenance provenance_from_python(const std::vector<std::pair<std::string, std::filesystem::path>>& files) {
+  std::vector<std::string> args{"python3"};
+  for (const py::handle& a : py::module_::import("sys").attr("argv")) args.push_back(py::str(a));
+  return pipeline::start_provenance(pipeline::shell_command_line(args), files);
+}
+
 }  // namespace breastfit::python

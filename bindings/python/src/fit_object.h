@@ -14,6 +14,7 @@ struct Fit {
   pipeline::RegisterResult result;
   std::shared_ptr<const model::RiggedModel> model;
   std::vector<std::filesystem::path> inputs;  ///< files the fit read (never overwritten by save)
+  std::filesystem::path template_path;         ///< the template's file (empty: unknown)
 };
 
 /// A transferred drawing in the scan's units.

@@ -98,7 +98,7 @@ void bind_register(py::module_& m) {
       .def_property_readonly("warnings", [](const Fit& f) { return f.result.warnings; })
       .def_property_readonly("time_s", [](const Fit& f) { return f.result.time_s; },
                              "scan in memory → fitted parameters, seconds")
-      .def_property_readonly("template", [](const Fit& f) { return Template{f.model}; })
+      .def_property_readonly("template", [](const Fit& f) { return Template{f.model, f.template_path}; })
       .def(
           "save",
           [](const Fit& f, const std::filesystem::path& dir, bool force, bool report_html) {
@@ -136,6 +136,15 @@ void bind_register(py::module_& m) {
         req.model = template_from_python(template_);
         if (!options.is_none()) fit::update_from_json(req.options, json_from_python(options, "options"));
         fit->model = req.model;
+        fit->template_path = template_path_from_python(template_);
+        {
+          const auto path = [](const py::handle& h) {
+            const auto p = path_from_python(h);
+            return p ? std::filesystem::path(*p) : std::filesystem::path();
+          };
+          req.provenance = provenance_from_python(
+              {{"scan", path(scan)}, {"landmarks", path(landmarks)}, {"template", fit->template_path}});
+        }
         {
           py::gil_scoped_release release;
           fit->result = pipeline::register_scan(req);

@@ -17,13 +17,13 @@ void bind_template(py::module_& m) {
                        "The rigged template torso: rest mesh (mm, LPS), scalable bones, bounded blendshapes, "
                        "landmarks and drawings on its surface. Immutable; shared by every fit that uses it.")
       .def_static(
-          "default", [] { return Template{template_from_python(py::none())}; },
+          "default", [] { return Template{template_from_python(py::none()), template_path_from_python(py::none())}; },
           "The shipped default template (default_torso.glb; $BREASTFIT_TEMPLATE overrides where it is looked for).")
       .def_static(
           "load",
           [](const std::filesystem::path& path) {
             py::gil_scoped_release release;
-            return Template{std::make_shared<const model::RiggedModel>(model::load_gltf(path))};
+            return Template{std::make_shared<const model::RiggedModel>(model::load_gltf(path)), path};
           },
           py::arg("path"), "Loads a rigged template (.glb/.gltf). Raises OSError naming the file for any problem.")
       .def_property_readonly("name", [](const Template& t) { return rm(t).name; })

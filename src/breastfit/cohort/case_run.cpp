@@ -10,6 +10,7 @@
 #include "breastfit/io/io.h"
 #include "breastfit/io/landmarks_io.h"
 #include "breastfit/model/template_library.h"
+#include "breastfit/pipeline/provenance.h"
 #include "breastfit/pipeline/register_outputs.h"
 #include "breastfit/pipeline/register_report_json.h"
 #include "breastfit/pipeline/register_scan.h"
@@ -56,6 +57,13 @@ CaseRecord run_case(const CohortCase& c, const fs::path& out_root, const CaseRun
                                : std::make_shared<const model::RiggedModel>(model::load_default_template());
     req.options = options.fit;
     if (options.ignore_landmarks) req.options.use_landmarks = false;
+    req.provenance = pipeline::start_provenance(
+        options.command_line,
+        {{"scan", c.scan},
+         {"landmarks", inputs.size() > 1 ? inputs[1] : fs::path()},
+         {"template", !options.template_path.empty() ? options.template_path
+                      : options.model            ? fs::path()
+                                                 : model::default_template_path()}});
     const pipeline::RegisterResult result = pipeline::register_scan(req);
     const fs::path dir = case_output_dir(out_root, c);
     // force: what is in `dir` is an unfinished run's (a finished one was returned above).

@@ -21,6 +21,10 @@ struct CaseRunOptions {
   bool ignore_landmarks = false;  ///< do not read the cases' landmark files (landmark-free fits)
   bool force = false;        ///< fit again even when the case's report.json exists
   bool report_html = true;   ///< write each case's report.html
+  /// For report.json's provenance: the template's file (empty: the shipped default's path when
+  /// `model` is nullptr, none otherwise) and the command line that started the cohort.
+  std::filesystem::path template_path;
+  std::string command_line;
 };
 
 /// The output sub-directory of a case: `out_root / name`.

@@ -38,6 +38,17 @@ InputFile hash_input(const std::string& role, const std::filesystem::path& path)
   return {role, path.string(), io::file_sha256_hex(path)};
 }
 
+Provenance start_provenance(std::string command_line,
+                            const std::vector<std::pair<std::string, std::filesystem::path>>& files) {
+  Provenance p;
+  p.version = breastfit_version();
+  p.started_utc = utc_now_iso8601();
+  p.command_line = std::move(command_line);
+  for (const auto& [role, path] : files)
+    if (!path.empty()) p.inputs.push_back(hash_input(role, path));
+  return p;
+}
+
 std::string shell_command_line(const std::vector<std::string>& args) {
   std::string out;
   for (const std::string& a : args) {

@@ -5,6 +5,7 @@
 /// block, which differs from run to run and is the only part determinism checks skip).
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "breastfit/fit/fit_options.h"
@@ -39,6 +40,12 @@ std::string utc_now_iso8601();
 
 /// An input file with its SHA-256. \throws IoError when the file cannot be read
 InputFile hash_input(const std::string& role, const std::filesystem::path& path);
+
+/// A provenance started now: breastfit_version(), utc_now_iso8601(), `command_line`, and each
+/// (role, path) of `files` hashed in order (entries with an empty path are skipped).
+/// \throws IoError when a file cannot be read
+Provenance start_provenance(std::string command_line,
+                            const std::vector<std::pair<std::string, std::filesystem::path>>& files);
 
 /// The arguments joined by spaces, each quoted for a POSIX shell when it needs it.
 std::string shell_command_line(const std::vector<std::string>& args);
