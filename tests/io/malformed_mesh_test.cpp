@@ -15,6 +15,8 @@
 #include "breastfit/io/read_obj.h"
 #include "breastfit/io/read_ply.h"
 #include "breastfit/io/read_stl.h"
+#include "breastfit/io/read_vtk.h"
+#include "breastfit/io/read_vtp.h"
 #include "support/test_paths.h"
 
 namespace breastfit::io {
@@ -296,7 +298,9 @@ TEST(MalformedMesh, FuzzRegressionsReadOrThrowIoError) {
        std::vector<std::pair<std::string, TriangleMesh (*)(std::string_view, const std::string&)>>{
            {"ply", &read_ply_from_memory},
            {"obj", &read_obj_from_memory},
-           {"stl", &read_stl_from_memory}}) {
+           {"stl", &read_stl_from_memory},
+           {"vtk", &read_vtk_from_memory},
+           {"vtp", &read_vtp_from_memory}}) {
     if (!std::filesystem::is_directory(root / sub)) continue;
     for (const auto& entry : std::filesystem::directory_iterator(root / sub)) {
       if (!entry.is_regular_file() || entry.path().filename().string().front() == '.') continue;

@@ -5,10 +5,13 @@
 
 #include <cstdint>
 #include <cstring>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
 #include "breastfit/core/errors.h"
+#include "support/test_paths.h"
 
 namespace breastfit::io {
 namespace {
@@ -218,6 +221,23 @@ TEST(ReadVtp, MalformedFilesGiveOneLineErrors) {
   std::string corrupt = zipped;
   corrupt[data + 12 + 9 * 4 + 5] ^= 0x55;  // inside the first zlib block of the normals (9 blocks)
   EXPECT_NE(problem(corrupt).find("corrupt"), std::string::npos);
+}
+
+TEST(ReadVtp, ZlibBlocksAnnouncingMoreThanTheyCanHoldAreRefusedBeforeInflating) {
+  // Found by fuzz_vtp: a connectivity array (size unknown until its offsets are read) whose
+  // block table announces 939 MB in a 700-byte file was inflated into a 939 MB buffer.
+  std::ifstream in(test::data_dir() / "fuzz" / "vtp" / "fuzz_zlib_blocks_announce_939mb.vtp", std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_FALSE(bytes.empty());
+  EXPECT_NE(problem(bytes).find("<Polys> connectivity"), std::string::npos) << problem(bytes);
+  // The same lie in an array of unknown size (a field-data string) is refused by the ratio bound.
+  std::string blocks;
+  for (std::uint32_t v : {1u, 939524153u, 939524153u, 16u}) put(blocks, v, false);
+  blocks += std::string(16, 'x');
+  const std::string field = "<VTKFile type=\"PolyData\" compressor=\"vtkZLibDataCompressor\"><PolyData><FieldData>"
+                            "<Array type=\"String\" Name=\"SPACE\" format=\"appended\" offset=\"0\"/></FieldData>"
+                            "</PolyData><AppendedData encoding=\"raw\">_" + blocks + "</AppendedData></VTKFile>";
+  EXPECT_NE(problem(field).find("cannot hold the 939524153 bytes announced"), std::string::npos) << problem(field);
 }
 
 TEST(ReadVtp, EveryPrefixOfACompressedFileReadsOrFailsCleanly) {

@@ -191,6 +191,15 @@ class VtpReader {
     }
     if (total > kMaxArrayBytes) fail(section + ": absurd data size");
     if (!source.read(static_cast<std::size_t>(blocks * header_bytes_), header)) truncated();
+    // Deflate expands at most ~1032:1: a larger total is a lie, refused before allocating.
+    std::uint64_t compressed_total = 0;
+    for (std::uint64_t b = 0; b < blocks; ++b) {
+      compressed_total += std::min<std::uint64_t>(header_value(header, static_cast<std::size_t>(3 + b)), bytes_.size());
+    }
+    if (total > 1032 * compressed_total + 1024) {
+      fail(section + ": the compressed blocks (" + std::to_string(compressed_total) + " bytes) cannot hold the " +
+           std::to_string(total) + " bytes announced");
+    }
     std::string data;
     std::string block;
     for (std::uint64_t b = 0; b < blocks; ++b) {
@@ -319,7 +328,11 @@ class VtpReader {
     if (offsets == nullptr || connectivity == nullptr) fail(section + " needs 'offsets' and 'connectivity' arrays");
     const std::vector<std::int64_t> ends = integers(*offsets, cells, section + " offsets");
     out.offsets.insert(out.offsets.end(), ends.begin(), ends.end());
-    out.connectivity = integers(*connectivity, std::nullopt, section + " connectivity");
+    // The offsets bound the connectivity: checked before it is read.
+    for (std::size_t i = 0; i < ends.size(); ++i) {
+      if (ends[i] < (i == 0 ? 0 : ends[i - 1])) fail(section + ": the cell offsets decrease at cell " + std::to_string(i));
+    }
+    out.connectivity = integers(*connectivity, static_cast<std::uint64_t>(ends.back()), section + " connectivity");
     detail::check_vtk_cell_array(out, name_, section);
     for (std::int64_t& id : out.connectivity) {
       if (id >= 0 && id < std::numeric_limits<std::int64_t>::max() - base) id += base;
