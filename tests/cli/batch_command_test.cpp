@@ -13,13 +13,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string slurp(const fs::path& p) {
-  std::ifstream f(p, std::ios::binary);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
-
 TEST(BatchCommand, GoodAndBadCaseThenResumed) {
   if (test::cli_path().empty()) GTEST_SKIP() << "CLI not built";
   const fs::path dir = test::temp_dir();
@@ -32,15 +25,15 @@ TEST(BatchCommand, GoodAndBadCaseThenResumed) {
   EXPECT_NE(out.find("breastfit batch: [2/2]"), std::string::npos) << out;  // not a terminal: lines, no bar
   EXPECT_EQ(out.find('\r'), std::string::npos);
   EXPECT_NE(out.find("2 cases: 1 ok, 1 not ok (0 from a previous run)"), std::string::npos) << out;
-  const std::string csv = slurp(dir / "out" / "cohort.csv");
+  const std::string csv = test::file_bytes(dir / "out" / "cohort.csv");
   EXPECT_NE(csv.find("\ngood,ok,no,"), std::string::npos) << csv;
   EXPECT_NE(csv.find("\nbad,failed,no,"), std::string::npos) << csv;
   EXPECT_TRUE(fs::exists(dir / "out" / "good" / "params.json"));
-  EXPECT_NE(slurp(dir / "out" / "cohort.html").find("<svg"), std::string::npos);
+  EXPECT_NE(test::file_bytes(dir / "out" / "cohort.html").find("<svg"), std::string::npos);
 
   EXPECT_EQ(test::run_cli(cmd + " --quiet", &out), 6) << out;
   EXPECT_TRUE(out.empty()) << out;
-  EXPECT_NE(slurp(dir / "out" / "cohort.csv").find("\ngood,ok,yes,"), std::string::npos);
+  EXPECT_NE(test::file_bytes(dir / "out" / "cohort.csv").find("\ngood,ok,yes,"), std::string::npos);
 }
 
 TEST(BatchCommand, ArgumentErrors) {

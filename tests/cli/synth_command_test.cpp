@@ -17,13 +17,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string slurp(const fs::path& p) {
-  std::ifstream f(p, std::ios::binary);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
-
 /// The toy model saved as a template file (the CLI's --template), once per test.
 fs::path toy_template(const fs::path& dir) {
   const fs::path p = dir / "toy.glb";
@@ -47,7 +40,7 @@ TEST(SynthCommand, WritesOneCaseInTheBenchLayout) {
   for (const char* f : {"scan.ply", "landmarks.mrk.json", "truth/surface.ply", "truth/landmarks.json",
                         "truth/curves.json", "truth/landmarks.mrk.json", "truth/meta.json"})
     EXPECT_TRUE(fs::is_regular_file(out / f)) << f;
-  const auto meta = nlohmann::json::parse(slurp(out / "truth/meta.json"));
+  const auto meta = nlohmann::json::parse(test::file_bytes(out / "truth/meta.json"));
   EXPECT_EQ(meta["units"], "m");
   EXPECT_EQ(meta["id"], "case1");
   EXPECT_EQ(meta["seed"].get<int>(), 4);
@@ -67,7 +60,7 @@ TEST(SynthCommand, WritesOneCaseInTheBenchLayout) {
                           &log),
             0)
       << log;
-  EXPECT_EQ(nlohmann::json::parse(slurp(out / "truth/meta.json"))["seed"].get<int>(), 5);
+  EXPECT_EQ(nlohmann::json::parse(test::file_bytes(out / "truth/meta.json"))["seed"].get<int>(), 5);
 }
 
 TEST(SynthCommand, CountAlternatesPoses) {
@@ -80,8 +73,8 @@ TEST(SynthCommand, CountAlternatesPoses) {
                           &log),
             0)
       << log;
-  const auto a = nlohmann::json::parse(slurp(dir / "set/synth_007_standing/truth/meta.json"));
-  const auto b = nlohmann::json::parse(slurp(dir / "set/synth_008_supine/truth/meta.json"));
+  const auto a = nlohmann::json::parse(test::file_bytes(dir / "set/synth_007_standing/truth/meta.json"));
+  const auto b = nlohmann::json::parse(test::file_bytes(dir / "set/synth_008_supine/truth/meta.json"));
   EXPECT_EQ(a["pose"]["type"], "standing");
   EXPECT_EQ(b["pose"]["type"], "supine");
   EXPECT_EQ(b["seed"].get<int>(), 8);

@@ -15,6 +15,9 @@ std::filesystem::path cli_path();
 /// exits normally; BREASTFIT_KEEP_TEST_DIRS=1 keeps it).
 std::filesystem::path temp_dir();
 
+/// The bytes of a file ("" when it cannot be read).
+std::string file_bytes(const std::filesystem::path& path);
+
 /// Runs the CLI with the given argument string through /bin/sh; returns the exit code and
 /// captures stdout+stderr into `output`.
 int run_cli(const std::string& args, std::string* output = nullptr);

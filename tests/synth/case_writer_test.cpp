@@ -18,13 +18,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string slurp(const fs::path& p) {
-  std::ifstream f(p, std::ios::binary);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
-
 SynthCase toy_case(std::uint64_t seed, const std::string& units) {
   SynthOptions o;
   o.seed = seed;
@@ -44,7 +37,7 @@ TEST(CaseWriter, WritesTheBenchLayout) {
   write_case(dir, c, false);
   for (const char* f : kFiles) EXPECT_TRUE(fs::is_regular_file(dir / f)) << f;
 
-  const std::string ply = slurp(dir / "scan.ply");
+  const std::string ply = test::file_bytes(dir / "scan.ply");
   EXPECT_NE(ply.find("format binary_little_endian 1.0"), std::string::npos);
   EXPECT_NE(ply.find("property float x"), std::string::npos);
   EXPECT_NE(ply.find("property list uchar int vertex_indices"), std::string::npos);
@@ -57,16 +50,16 @@ TEST(CaseWriter, WritesTheBenchLayout) {
   for (const auto& p : c.input_landmarks)
     EXPECT_LT((input.find_point(p.name)->position - p.position).norm(), 1e-5) << p.name;
 
-  const auto lm = nlohmann::json::parse(slurp(dir / "truth/landmarks.json"));
+  const auto lm = nlohmann::json::parse(test::file_bytes(dir / "truth/landmarks.json"));
   for (const auto& p : c.truth_landmarks)
     for (int k = 0; k < 3; ++k) EXPECT_NEAR(lm[p.name][k].get<double>(), p.position[k], 1e-6);
-  const auto curves = nlohmann::json::parse(slurp(dir / "truth/curves.json"));
+  const auto curves = nlohmann::json::parse(test::file_bytes(dir / "truth/curves.json"));
   ASSERT_EQ(curves.size(), c.truth_curves.size());
   for (const auto& cv : c.truth_curves) {
     EXPECT_EQ(curves[cv.name]["closed"].get<bool>(), cv.closed);
     EXPECT_EQ(curves[cv.name]["points"].size(), static_cast<size_t>(cv.points.rows()));
   }
-  const auto meta = nlohmann::json::parse(slurp(dir / "truth/meta.json"));
+  const auto meta = nlohmann::json::parse(test::file_bytes(dir / "truth/meta.json"));
   EXPECT_EQ(meta["units"], "mm");
   EXPECT_EQ(meta["T_body_to_scan_mm"].size(), 4u);
   EXPECT_TRUE(meta.contains("true_params"));
@@ -78,7 +71,7 @@ TEST(CaseWriter, MetreCasesDeclareMetres) {
   const fs::path dir = test::temp_dir() / "case_m";
   const SynthCase c = toy_case(4, "m");
   write_case(dir, c, false);
-  const std::string mrk = slurp(dir / "landmarks.mrk.json");
+  const std::string mrk = test::file_bytes(dir / "landmarks.mrk.json");
   EXPECT_NE(mrk.find("UCUM"), std::string::npos);
   io::MarkupsReadOptions keep;
   keep.convert_to_mm = false;
@@ -93,15 +86,15 @@ TEST(CaseWriter, IsByteIdenticalForTheSameSeedAndNeverOverwritesWithoutForce) {
   const fs::path a = test::temp_dir() / "a", b = test::temp_dir() / "b";
   write_case(a, toy_case(5, "mm"), false);
   write_case(b, toy_case(5, "mm"), false);
-  for (const char* f : kFiles) EXPECT_EQ(slurp(a / f), slurp(b / f)) << f;
+  for (const char* f : kFiles) EXPECT_EQ(test::file_bytes(a / f), test::file_bytes(b / f)) << f;
 
   const SynthCase other = toy_case(6, "mm");
   EXPECT_THROW(write_case(a, other, false), IoError);
-  EXPECT_EQ(slurp(a / "truth/meta.json"), slurp(b / "truth/meta.json"));  // untouched
+  EXPECT_EQ(test::file_bytes(a / "truth/meta.json"), test::file_bytes(b / "truth/meta.json"));  // untouched
   std::ofstream(a / "notes.txt") << "mine";
   EXPECT_NO_THROW(write_case(a, other, true));
-  EXPECT_NE(slurp(a / "truth/meta.json"), slurp(b / "truth/meta.json"));
-  EXPECT_EQ(slurp(a / "notes.txt"), "mine");  // not a file of the case: untouched
+  EXPECT_NE(test::file_bytes(a / "truth/meta.json"), test::file_bytes(b / "truth/meta.json"));
+  EXPECT_EQ(test::file_bytes(a / "notes.txt"), "mine");  // not a file of the case: untouched
   for (const auto& e : fs::directory_iterator(a.parent_path()))  // the staging directory is gone
     EXPECT_EQ(e.path().filename().string().find(".breastfit-tmp-"), std::string::npos) << e.path();
 }
