@@ -18,11 +18,12 @@ void register_demo(CLI::App& app, int& exit_code);
 void register_map(CLI::App& app, int& exit_code);
 void register_experiments(CLI::App& app, int& exit_code);
 void register_volume(CLI::App& app, int& exit_code);
+void register_landmarks(CLI::App& app, int& exit_code);
 
 inline constexpr RegisterFn kCommands[] = {
     register_inspect, register_template, register_render, register_register,
     register_synth,   register_bench,    register_demo,    register_map,
-    register_experiments, register_volume,
+    register_experiments, register_volume,  register_landmarks,
 };
 
 }  // namespace breastfit::cli

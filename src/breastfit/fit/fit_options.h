@@ -127,6 +127,12 @@ struct FitOptions {
   /// A given nipple farther than this from the breast's tip found on the scan is flagged
   /// (landmark_check.h: breast_tip_on_scan; at most 13.3 mm on 30 benchmark cases as placed).
   double nipple_tip_check_mm = 18.0;
+  /// Landmark-free: the kept orientation must score this share better than the best different
+  /// one (fit/orientation_search.h), else a warning says the orientation is uncertain.
+  double orientation_min_margin = 0.15;
+  /// Landmark-free (fewer than 3 landmarks): after the pose stage, each nipple not given is held
+  /// at the breast's tip found on the scan (landmark_check.h) for the shape and refine stages.
+  bool anatomical_nipples = true;
   double max_surface_mae_mm = 8.0;   ///< a final kept-correspondence MAE above this = not usable
   double min_kept_fraction = 0.25;   ///< fewer kept correspondences than this share = not usable
 

@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <set>
 
 #include "breastfit/core/errors.h"
 #include "breastfit/core/timer.h"
 #include "breastfit/fit/initialization.h"
+#include "breastfit/fit/orientation_search.h"
 #include "breastfit/fit/stage_minimizer.h"
 #include "breastfit/fit/problem.h"
 #include "breastfit/fit/sliding_landmarks.h"
@@ -92,6 +94,50 @@ std::vector<LandmarkCheck> check_landmarks(const model::RiggedModel& model, cons
   return out;
 }
 
+// The search's choice into the summary: the one line, the report's details, a warning when a
+// different orientation fits almost as well.
+void summarize_orientation(const OrientationSearch& search, const FitOptions& options, FitSummary& summary) {
+  OrientationSummary& o = summary.orientation;
+  o.searched = true;
+  o.chosen = search.hypotheses.empty() ? std::string("the shape's body frame") : search.hypotheses.front().name;
+  o.runner_up = search.runner_up;
+  o.margin = search.margin;
+  o.confident = !(search.margin < options.orientation_min_margin);
+  o.body_frame = search.body_frame;
+  o.arm_abduction_deg[0] = search.arm_abduction_deg[0];
+  o.arm_abduction_deg[1] = search.arm_abduction_deg[1];
+  o.arm_pose = search.arm_pose;
+  for (const auto& h : search.hypotheses) o.candidates.push_back({h.name, h.score, h.refined});
+  const std::string margin =
+      std::isfinite(search.margin) ? fmt(100 * search.margin, 0) + " % better than '" + search.runner_up + "'"
+                                   : std::string("no other orientation fits");
+  summary.initialization_detail = "landmark-free: body axes from the scan's shape, " +
+                                  std::to_string(search.hypotheses.size()) + " orientations tried, kept '" +
+                                  o.chosen + "' (" + margin + "); " + o.arm_pose + " (the scan is " +
+                                  fmt(search.width_to_height, 2) + "x wider than high)";
+  if (!o.confident)
+    summary.warnings.push_back("the landmark-free orientation is uncertain: '" + o.chosen + "' fits only " +
+                               fmt(100 * search.margin, 0) + " % better than '" + search.runner_up +
+                               "'; check the landmarks and drawings, or give at least 3 landmarks");
+}
+
+// Targets for the nipples not in `given`: the breast's tip on the scan near each posed nipple.
+std::vector<LandmarkTarget> breast_tip_targets(const model::RiggedModel& model, const Points& V,
+                                               const model::PoseParams& params, const ScanTarget& scan,
+                                               const std::vector<LandmarkTarget>& given) {
+  std::vector<LandmarkTarget> out;
+  const Points N = mesh::vertex_normals(V, model.rest.F);
+  for (const char* name : {"nipple_R", "nipple_L"}) {
+    const auto idx = model.landmark_index(name);
+    if (!idx || std::any_of(given.begin(), given.end(), [&](const LandmarkTarget& t) { return t.name == name; }))
+      continue;
+    const Vec3 nipple = model_landmark_position(model, *idx, V, params);
+    if (const auto tip = breast_tip_on_scan(scan.mesh().V, V, N, nipple))
+      out.push_back({name, *idx, *tip, landmark_weight(name)});
+  }
+  return out;
+}
+
 std::string termination_message(const FitSummary& s) {
   const std::string stage = s.stages.empty() ? std::string("-") : s.stages.back().name;
   const int n = static_cast<int>(s.iterations.size());
@@ -124,6 +170,8 @@ FitResult register_template(const model::RiggedModel& model, ScanTarget& scan, s
     const LandmarkInitialization init = initialize_from_landmarks(model, landmarks);
     params.global = init.similarity;
     summary.initialization = "landmarks";
+    summary.initialization_detail = "from " + std::to_string(landmarks.size()) + " landmarks (RMS " +
+                                    fmt(init.rms_mm) + " mm after the similarity)";
     if (init.swapped)
       summary.warnings.push_back("the landmarks' _R/_L labels look swapped (RMS " + fmt(init.swapped_rms_mm) +
                                  " mm as given, " + fmt(init.rms_mm) + " mm with R and L exchanged): corrected");
@@ -131,25 +179,41 @@ FitResult register_template(const model::RiggedModel& model, ScanTarget& scan, s
     if (!landmarks.empty())
       summary.warnings.push_back("fewer than 3 landmarks: initialised without landmarks; the " +
                                  std::to_string(landmarks.size()) + " given are used in the fit");
-    params.global = initialize_without_landmarks(model, scan, options);
+    const OrientationSearch search = search_orientation(model, scan, options);
+    params = search.params;
     summary.initialization = "landmark-free";
-    summary.warnings.push_back(
-        "registered without landmarks: the template's orientation on the scan comes from its shape alone "
-        "and can be wrong (on the benchmark: landmark errors of 12-38 mm, one case upside down); check the "
-        "landmarks and drawings before use, or give at least 3 landmarks");
+    summarize_orientation(search, options, summary);
   }
   summary.landmarks_used = static_cast<int>(landmarks.size());
 
-  Problem problem(model, scan, options, landmarks);
-  problem.evaluator().set_params(params);
-  problem.orient_scan_normals(options.correspondences.max_distance_start_mm);
-  initialize_arms(model, scan, params);
+  auto problem_ptr = std::make_unique<Problem>(model, scan, options, landmarks);
+  problem_ptr->evaluator().set_params(params);
+  problem_ptr->orient_scan_normals(options.correspondences.max_distance_start_mm);
+  if (landmarks.size() >= 3) initialize_arms(model, scan, params);  // landmark-free: done by the search
   summary.timings.push_back({"initialization", phase.seconds()});
 
   std::vector<StageOptions> stages;
   if (landmarks.size() >= 3) stages.push_back(options.landmark_pose);
   for (const auto& s : {options.rigid, options.pose, options.shape, options.refine}) stages.push_back(s);
-  summary.termination = minimize_stages(problem, stages, params, summary, on_iteration);
+  if (landmarks.size() < 3 && options.anatomical_nipples) {
+    // Without landmarks the breasts can slide over the scan (the surface barely changes, the
+    // nipples move): once posed, the breast tips found on the scan hold the nipples for the rest.
+    const std::vector<StageOptions> coarse(stages.begin(), stages.begin() + 2);
+    summary.termination = minimize_stages(*problem_ptr, coarse, params, summary, on_iteration);
+    if (summary.termination != Termination::Aborted && summary.termination != Termination::NumericalFailure) {
+      problem_ptr->evaluator().set_params(params);
+      std::vector<LandmarkTarget> held = landmarks;
+      for (auto& t : breast_tip_targets(model, problem_ptr->evaluator().vertices(), params, scan, landmarks))
+        held.push_back(t);
+      summary.anatomical_landmarks = static_cast<int>(held.size() - landmarks.size());
+      problem_ptr = std::make_unique<Problem>(model, scan, options, held);
+      summary.termination = minimize_stages(*problem_ptr, {stages.begin() + 2, stages.end()}, params, summary,
+                                            on_iteration);
+    }
+  } else {
+    summary.termination = minimize_stages(*problem_ptr, stages, params, summary, on_iteration);
+  }
+  Problem& problem = *problem_ptr;
 
   // Final state: every vertex at the final threshold.
   phase.reset();
