@@ -24,9 +24,10 @@ nlohmann::json read_json(const fs::path& p) {
   return nlohmann::json::parse(f);
 }
 
-// A synthetic case rotated up to `rotation_deg` about a random axis, up to 1 m away.
-fs::path turned_case(int seed, const std::string& pose, const std::string& units, int rotation_deg) {
-  const fs::path dir = test::temp_dir() / ("case_" + std::to_string(seed) + pose + units);
+// A synthetic case in `root`, rotated up to `rotation_deg` about a random axis, up to 1 m away.
+fs::path turned_case(const fs::path& root, int seed, const std::string& pose, const std::string& units,
+                     int rotation_deg) {
+  const fs::path dir = root / ("case_" + std::to_string(seed) + pose + units);
   std::string log;
   EXPECT_EQ(test::run_cli("synth --quiet --seed " + std::to_string(seed) + " --pose " + pose + " --units " + units +
                               " --rotation-deg " + std::to_string(rotation_deg) + " --translation-m 1 --out '" +
@@ -64,8 +65,8 @@ double mean_error_mm(const fs::path& found, const fs::path& case_dir, double to_
 
 TEST(LandmarksCommand, FindsTheLandmarksOfATurnedScanInMetresAndRegisterAcceptsThem) {
   if (test::cli_path().empty()) GTEST_SKIP() << "CLI not built";
-  const fs::path c = turned_case(21, "standing", "m", 180);
   const fs::path dir = test::temp_dir();
+  const fs::path c = turned_case(dir, 21, "standing", "m", 180);
   std::string log;
   ASSERT_EQ(test::run_cli("landmarks '" + (c / "scan.ply").string() + "' --json --out '" + (dir / "L.mrk.json").string() +
                               "'",
@@ -105,9 +106,10 @@ TEST(RegisterWithoutLandmarks, SaysSoInOneLineAndNeverFlipsATurnedScan) {
     const char* pose;
     const char* units;
   };
+  const fs::path dir = test::temp_dir();
   for (const Case k : {Case{31, "standing", "mm"}, Case{32, "supine", "m"}, Case{33, "standing", "m"}}) {
-    const fs::path c = turned_case(k.seed, k.pose, k.units, 180);
-    const fs::path out = test::temp_dir() / "out";
+    const fs::path c = turned_case(dir, k.seed, k.pose, k.units, 180);
+    const fs::path out = dir / ("out" + std::to_string(k.seed));
     std::string log;
     ASSERT_EQ(test::run_cli("register '" + (c / "scan.ply").string() + "' --quiet --no-report-html --out '" +
                                 out.string() + "'",
@@ -125,14 +127,14 @@ TEST(RegisterWithoutLandmarks, SaysSoInOneLineAndNeverFlipsATurnedScan) {
 
 TEST(RegisterWithFewLandmarks, ThreeLandmarksInitialiseAndFit) {
   if (test::cli_path().empty()) GTEST_SKIP() << "CLI not built";
-  const fs::path c = turned_case(41, "supine", "mm", 180);
+  const fs::path dir = test::temp_dir();
+  const fs::path c = turned_case(dir, 41, "supine", "mm", 180);
   auto m = read_json(c / "landmarks.mrk.json");
   auto& cps = m["markups"][0]["controlPoints"];
   nlohmann::json kept = nlohmann::json::array();
   for (const auto& cp : cps)
     if (cp["label"] == "sternal_notch" || cp["label"] == "nipple_R" || cp["label"] == "nipple_L") kept.push_back(cp);
   cps = kept;
-  const fs::path dir = test::temp_dir();
   std::ofstream(dir / "three.mrk.json") << m.dump(1);
   std::string log;
   ASSERT_EQ(test::run_cli("register '" + (c / "scan.ply").string() + "' --landmarks '" + (dir / "three.mrk.json").string() +
