@@ -41,7 +41,8 @@ fs::path turned_case(const fs::path& root, int seed, const std::string& pose, co
 // Control points of a markups file by label (file units).
 std::map<std::string, Vec3> markup_points(const fs::path& p) {
   std::map<std::string, Vec3> out;
-  for (const auto& cp : read_json(p)["markups"][0]["controlPoints"])
+  const auto markups = read_json(p);  // kept alive over the loop
+  for (const auto& cp : markups["markups"][0]["controlPoints"])
     out[cp["label"].get<std::string>()] =
         Vec3(cp["position"][0].get<double>(), cp["position"][1].get<double>(), cp["position"][2].get<double>());
   return out;
