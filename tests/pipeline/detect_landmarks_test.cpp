@@ -27,10 +27,13 @@ TEST(DetectLandmarks, FindsEveryLandmarkOnTheScanNearTheTruth) {
     EXPECT_GE(l.confidence, 0.0) << l.name;
     EXPECT_LE(l.confidence, 1.0) << l.name;
     if (l.name == "nipple_R" || l.name == "nipple_L") EXPECT_EQ(l.method, "breast tip on the scan");
+    const bool lowest = l.name == "lowest_breast_R" || l.name == "lowest_breast_L";
+    if (lowest) EXPECT_EQ(l.method, "breast fold on the scan") << l.name;
     for (const auto& t : c.truth_landmarks)
       if (t.name == l.name) {
         sum += (l.position_mm - t.position).norm();
         ++n;
+        if (lowest) EXPECT_LT((l.position_mm - t.position).norm(), 20.0) << l.name;
       }
   }
   ASSERT_GT(n, 0);

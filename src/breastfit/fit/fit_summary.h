@@ -119,8 +119,11 @@ struct FitSummary {
   /// One line on how the template was placed (printed by the CLI, in both reports).
   std::string initialization_detail;
   OrientationSummary orientation;     ///< landmark-free only
-  /// Landmark-free: nipples held at the breast tips found on the scan after the pose stage.
+  /// Landmarks not given that were held at anatomy found on the scan after the pose stage (the
+  /// nipples at the breast tips landmark-free, the lowest breast points at the folds): their count
+  /// and names.
   int anatomical_landmarks = 0;
+  std::vector<std::string> anatomical_landmark_names;
   int landmarks_used = 0;
   DetailSummary detail;
   std::vector<LandmarkCheck> landmark_checks;  ///< every landmark used, after the fit

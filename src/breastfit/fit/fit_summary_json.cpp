@@ -77,6 +77,7 @@ nlohmann::json to_json(const FitSummary& s) {
           {"initialization_detail", s.initialization_detail},
           {"orientation", orientation_json(s.orientation)},
           {"anatomical_landmarks", s.anatomical_landmarks},
+          {"anatomical_landmark_names", s.anatomical_landmark_names},
           {"landmarks_used", s.landmarks_used},
           {"energy", to_json(s.final_energy)},
           {"correspondences", to_json(s.final_correspondences)},

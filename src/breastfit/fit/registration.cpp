@@ -7,6 +7,7 @@
 
 #include "breastfit/core/errors.h"
 #include "breastfit/core/timer.h"
+#include "breastfit/fit/breast_fold.h"
 #include "breastfit/fit/initialization.h"
 #include "breastfit/fit/orientation_search.h"
 #include "breastfit/fit/stage_minimizer.h"
@@ -121,6 +122,10 @@ void summarize_orientation(const OrientationSearch& search, const FitOptions& op
                                "'; check the landmarks and drawings, or give at least 3 landmarks");
 }
 
+bool is_given(const std::vector<LandmarkTarget>& given, const std::string& name) {
+  return std::any_of(given.begin(), given.end(), [&](const LandmarkTarget& t) { return t.name == name; });
+}
+
 // Targets for the nipples not in `given`: the breast's tip on the scan near each posed nipple.
 std::vector<LandmarkTarget> breast_tip_targets(const model::RiggedModel& model, const Points& V,
                                                const model::PoseParams& params, const ScanTarget& scan,
@@ -129,11 +134,49 @@ std::vector<LandmarkTarget> breast_tip_targets(const model::RiggedModel& model, 
   const Points N = mesh::vertex_normals(V, model.rest.F);
   for (const char* name : {"nipple_R", "nipple_L"}) {
     const auto idx = model.landmark_index(name);
-    if (!idx || std::any_of(given.begin(), given.end(), [&](const LandmarkTarget& t) { return t.name == name; }))
-      continue;
+    if (!idx || is_given(given, name)) continue;
     const Vec3 nipple = model_landmark_position(model, *idx, V, params);
     if (const auto tip = breast_tip_on_scan(scan.mesh().V, V, N, nipple))
       out.push_back({name, *idx, *tip, landmark_weight(name)});
+  }
+  return out;
+}
+
+// Targets for the lowest breast points not in `held`: the fold found on the scan below each
+// nipple held (given or the breast's tip), when the detector is sure.
+std::vector<LandmarkTarget> breast_fold_targets(const model::RiggedModel& model, const Points& V,
+                                                const model::PoseParams& params, const ScanTarget& scan,
+                                                const std::vector<LandmarkTarget>& held) {
+  std::vector<LandmarkTarget> out;
+  const Points N = mesh::vertex_normals(V, model.rest.F);
+  // Up along the sternum (the frame the fold's depth behind the tip is measured in).
+  Vec3 up = posed_vertical_axis(model, params);
+  const auto notch = model.landmark_index("sternal_notch"), xiphoid = model.landmark_index("xiphoid");
+  if (notch && xiphoid)
+    up = (model_landmark_position(model, *notch, V, params) - model_landmark_position(model, *xiphoid, V, params))
+             .normalized();
+  // The body's front: the model's outward normals around both nipples (their lateral parts
+  // cancel), level.
+  Vec3 front = Vec3::Zero();
+  for (const char* name : {"nipple_R", "nipple_L"}) {
+    const auto idx = model.landmark_index(name);
+    if (!idx) return out;
+    const Vec3 nipple = model_landmark_position(model, *idx, V, params);
+    for (Index i = 0; i < V.rows(); ++i)
+      if ((V.row(i).transpose() - nipple).norm() < 40.0) front += N.row(i).transpose();
+  }
+  front -= front.dot(up) * up;
+  if (front.norm() <= 0) return out;
+  front.normalize();
+  for (const char* side : {"R", "L"}) {
+    const std::string name = std::string("lowest_breast_") + side;
+    const auto idx = model.landmark_index(name);
+    const auto nipple = std::find_if(held.begin(), held.end(),
+                                     [&](const LandmarkTarget& t) { return t.name == std::string("nipple_") + side; });
+    if (!idx || nipple == held.end() || is_given(held, name)) continue;
+    const Vec3 fitted = model_landmark_position(model, *idx, V, params);
+    if (const auto fold = lowest_breast_on_scan(scan.mesh().V, nipple->position, fitted, up, front))
+      out.push_back({name, *idx, *fold, landmark_weight(name)});
   }
   return out;
 }
@@ -195,20 +238,29 @@ FitResult register_template(const model::RiggedModel& model, ScanTarget& scan, s
   std::vector<StageOptions> stages;
   if (landmarks.size() >= 3) stages.push_back(options.landmark_pose);
   for (const auto& s : {options.rigid, options.pose, options.shape, options.refine}) stages.push_back(s);
-  if (landmarks.size() < 3 && options.anatomical_nipples) {
-    // Without landmarks the breasts can slide over the scan (the surface barely changes, the
-    // nipples move): once posed, the breast tips found on the scan hold the nipples for the rest.
-    const std::vector<StageOptions> coarse(stages.begin(), stages.begin() + 2);
+  // Anatomy held where no landmark was given: without landmarks the breasts can slide over the
+  // scan (the surface barely changes, the nipples move) and the lower pole stays too high; once
+  // posed, the breast tips and the folds found on the scan hold the nipples and the lowest breast
+  // points for the shape and refine stages.
+  const bool hold_nipples = landmarks.size() < 3 && options.anatomical_nipples;
+  const bool hold_folds = options.anatomical_lowest_breast &&
+                          !(is_given(landmarks, "lowest_breast_R") && is_given(landmarks, "lowest_breast_L"));
+  if (hold_nipples || hold_folds) {
+    const auto coarse_end = stages.end() - 2;  // shape and refine follow
+    const std::vector<StageOptions> coarse(stages.begin(), coarse_end);
     summary.termination = minimize_stages(*problem_ptr, coarse, params, summary, on_iteration);
     if (summary.termination != Termination::Aborted && summary.termination != Termination::NumericalFailure) {
       problem_ptr->evaluator().set_params(params);
+      const Points& V = problem_ptr->evaluator().vertices();
       std::vector<LandmarkTarget> held = landmarks;
-      for (auto& t : breast_tip_targets(model, problem_ptr->evaluator().vertices(), params, scan, landmarks))
-        held.push_back(t);
+      if (hold_nipples)
+        for (auto& t : breast_tip_targets(model, V, params, scan, landmarks)) held.push_back(t);
+      if (hold_folds)
+        for (auto& t : breast_fold_targets(model, V, params, scan, held)) held.push_back(t);
       summary.anatomical_landmarks = static_cast<int>(held.size() - landmarks.size());
+      for (size_t i = landmarks.size(); i < held.size(); ++i) summary.anatomical_landmark_names.push_back(held[i].name);
       problem_ptr = std::make_unique<Problem>(model, scan, options, held);
-      summary.termination = minimize_stages(*problem_ptr, {stages.begin() + 2, stages.end()}, params, summary,
-                                            on_iteration);
+      summary.termination = minimize_stages(*problem_ptr, {coarse_end, stages.end()}, params, summary, on_iteration);
     }
   } else {
     summary.termination = minimize_stages(*problem_ptr, stages, params, summary, on_iteration);

@@ -36,9 +36,12 @@ DetectedLandmarks detect_landmarks(RegisterRequest request) {
     const double gap = std::sqrt(m.sq_dist);
     d.position_mm = m.point;
     d.confidence = oriented * std::exp(-gap / kSupportScaleMm);
+    const auto& held = r.fit.summary.anatomical_landmark_names;
+    const bool anatomical = std::find(held.begin(), held.end(), p.name) != held.end();
     const bool nipple = p.name == "nipple_R" || p.name == "nipple_L";
-    d.method = nipple && r.fit.summary.anatomical_landmarks > 0 ? "breast tip on the scan"
-                                                                : "fitted template, snapped to the scan";
+    d.method = !anatomical ? "fitted template, snapped to the scan"
+               : nipple    ? "breast tip on the scan"
+                           : "breast fold on the scan";
     out.landmarks.push_back(d);
   }
   return out;
