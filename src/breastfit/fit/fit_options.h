@@ -133,9 +133,9 @@ struct FitOptions {
   /// Landmark-free (fewer than 3 landmarks): after the pose stage, each nipple not given is held
   /// at the breast's tip found on the scan (landmark_check.h) for the shape and refine stages.
   bool anatomical_nipples = true;
-  /// Each lowest breast point not given (landmark-free or a subset such as the notch and the
-  /// nipples) is held, from the shape stage on, at the fold found on the scan below the nipple
-  /// (breast_fold.h), when the detector is sure; otherwise it is left to the fit.
+  /// Landmark-free (fewer than 3 landmarks): each lowest breast point not given is held, from the
+  /// shape stage on, at the fold found on the scan below the nipple (breast_fold.h), when the
+  /// detector is sure; otherwise it is left to the fit.
   bool anatomical_lowest_breast = true;
   double max_surface_mae_mm = 8.0;   ///< a final kept-correspondence MAE above this = not usable
   double min_kept_fraction = 0.25;   ///< fewer kept correspondences than this share = not usable

@@ -243,7 +243,9 @@ FitResult register_template(const model::RiggedModel& model, ScanTarget& scan, s
   // posed, the breast tips and the folds found on the scan hold the nipples and the lowest breast
   // points for the shape and refine stages.
   const bool hold_nipples = landmarks.size() < 3 && options.anatomical_nipples;
-  const bool hold_folds = options.anatomical_lowest_breast &&
+  // Landmark-free only for now: with the notch and the nipples given, the folds helped both
+  // referee sets but made a synthetic supine case worse (docs/REGISTRATION.md).
+  const bool hold_folds = landmarks.size() < 3 && options.anatomical_lowest_breast &&
                           !(is_given(landmarks, "lowest_breast_R") && is_given(landmarks, "lowest_breast_L"));
   if (hold_nipples || hold_folds) {
     const auto coarse_end = stages.end() - 2;  // shape and refine follow
