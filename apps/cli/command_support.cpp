@@ -119,6 +119,10 @@ void print_register_summary(std::ostream& os, const pipeline::RegisterResult& r,
                 r.time_s, s.iterations.size(), s.message.c_str(), std::string(mesh::units_name(r.scan.units)).c_str(),
                 r.surface.mae, r.surface.sd, r.surface.max, r.surface.n);
   os << buf;
+  if (r.scan.units_detected)
+    os << "  units: " << mesh::units_name(r.scan.units) << ", from the scan's extent ("
+       << r.scan.extent << " " << mesh::units_name(r.scan.units) << "; a torso is 250-700 mm)\n";
+  if (!s.initialization_detail.empty()) os << "  initialisation: " << s.initialization_detail << "\n";
   if (s.detail.applied) {
     std::snprintf(buf, sizeof buf,
                   "  surface detail: offsets along the normals mean %.2f mm, max %.1f mm (template alone: MAE %.2f mm)\n",

@@ -78,6 +78,9 @@ void register_register(CLI::App& app, int& exit_code) {
     pipeline::RegisterOutputOptions output_options;
     output_options.report_html = !args->no_report_html;
     pipeline::write_register_outputs(args->out, result, model, args->force, inputs, output_options);
+    if (result.fit.summary.initialization == "landmark-free")  // one line, quiet or not
+      std::cerr << "breastfit: " << (args->landmarks.empty() || args->no_landmarks ? "no landmarks given: " : "")
+                << result.fit.summary.initialization_detail << "\n";
     for (const auto& w : result.warnings) std::cerr << "breastfit: warning: " << w << "\n";
     if (!args->quiet) print_register_summary(std::cout, result, args->out, output_options.report_html);
   });

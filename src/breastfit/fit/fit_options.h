@@ -127,6 +127,16 @@ struct FitOptions {
   /// A given nipple farther than this from the breast's tip found on the scan is flagged
   /// (landmark_check.h: breast_tip_on_scan; at most 13.3 mm on 30 benchmark cases as placed).
   double nipple_tip_check_mm = 18.0;
+  /// Landmark-free: the kept orientation must score this share better than the best different
+  /// one (fit/orientation_search.h), else a warning says the orientation is uncertain.
+  double orientation_min_margin = 0.15;
+  /// Landmark-free (fewer than 3 landmarks): after the pose stage, each nipple not given is held
+  /// at the breast's tip found on the scan (landmark_check.h) for the shape and refine stages.
+  bool anatomical_nipples = true;
+  /// Landmark-free (fewer than 3 landmarks): each lowest breast point not given is held, from the
+  /// shape stage on, at the fold found on the scan below the nipple (breast_fold.h), when the
+  /// detector is sure; otherwise it is left to the fit.
+  bool anatomical_lowest_breast = true;
   double max_surface_mae_mm = 8.0;   ///< a final kept-correspondence MAE above this = not usable
   double min_kept_fraction = 0.25;   ///< fewer kept correspondences than this share = not usable
   /// Threads for the correspondence searches and the normal equations (0: all cores, or

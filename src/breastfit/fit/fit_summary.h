@@ -85,6 +85,24 @@ struct PhaseTime {
   double seconds = 0;
 };
 
+/// The landmark-free initialisation's choice (fit/orientation_search.h), for the report.
+struct OrientationSummary {
+  struct Candidate {
+    std::string name;
+    double score = 0;     ///< mm, lower is better
+    bool refined = false; ///< scored after the arms and a brief pose fit
+  };
+  bool searched = false;          ///< false: initialised from landmarks
+  std::string chosen;             ///< the kept hypothesis' name
+  std::string runner_up;          ///< the best hypothesis turned ≥ 45° from it ("" when none)
+  double margin = 0;              ///< (runner-up score − best) / best; ∞ when no runner-up
+  bool confident = true;          ///< margin ≥ the threshold (below: a warning)
+  std::string body_frame;         ///< how the scan's shape gave the body axes
+  double arm_abduction_deg[2] = {0, 0};  ///< R, L
+  std::string arm_pose;           ///< "arms hanging (standing)" / "arms abducted (supine, arm boards)"
+  std::vector<Candidate> candidates;  ///< best first
+};
+
 struct FitSummary {
   Termination termination = Termination::IterationCap;  ///< the last stage's (or aborted / failure)
   std::string termination_message;  ///< one line: how the solver ended
@@ -98,6 +116,14 @@ struct FitSummary {
   CorrespondenceStats final_reverse_correspondences;  ///< scan → model, at the end
   double kept_mae_mm = 0;             ///< mean |point-to-plane| over the final kept pairs
   std::string initialization;         ///< "landmarks" or "landmark-free"
+  /// One line on how the template was placed (printed by the CLI, in both reports).
+  std::string initialization_detail;
+  OrientationSummary orientation;     ///< landmark-free only
+  /// Landmarks not given that were held at anatomy found on the scan after the pose stage (the
+  /// nipples at the breast tips landmark-free, the lowest breast points at the folds): their count
+  /// and names.
+  int anatomical_landmarks = 0;
+  std::vector<std::string> anatomical_landmark_names;
   int landmarks_used = 0;
   DetailSummary detail;
   std::vector<LandmarkCheck> landmark_checks;  ///< every landmark used, after the fit

@@ -1,5 +1,7 @@
 #include "breastfit/fit/fit_summary_json.h"
 
+#include <cmath>
+
 #include <nlohmann/json.hpp>
 
 namespace breastfit::fit {
@@ -37,6 +39,21 @@ nlohmann::json landmark_checks_json(const std::vector<LandmarkCheck>& checks) {
   return out;
 }
 
+nlohmann::json orientation_json(const OrientationSummary& o) {
+  if (!o.searched) return nullptr;
+  nlohmann::json candidates = nlohmann::json::array();
+  for (const auto& c : o.candidates)
+    candidates.push_back({{"name", c.name}, {"score_mm", c.score}, {"refined", c.refined}});
+  return {{"chosen", o.chosen},
+          {"runner_up", o.runner_up},
+          {"margin", std::isfinite(o.margin) ? nlohmann::json(o.margin) : nlohmann::json(nullptr)},
+          {"confident", o.confident},
+          {"body_frame", o.body_frame},
+          {"arm_abduction_deg", {{"R", o.arm_abduction_deg[0]}, {"L", o.arm_abduction_deg[1]}}},
+          {"arm_pose", o.arm_pose},
+          {"candidates", candidates}};
+}
+
 nlohmann::json to_json(const FitSummary& s) {
   nlohmann::json stages = nlohmann::json::array();
   for (const auto& st : s.stages)
@@ -57,6 +74,10 @@ nlohmann::json to_json(const FitSummary& s) {
           {"verdict", s.verdict.reason},
           {"iterations", s.iterations.size()},
           {"initialization", s.initialization},
+          {"initialization_detail", s.initialization_detail},
+          {"orientation", orientation_json(s.orientation)},
+          {"anatomical_landmarks", s.anatomical_landmarks},
+          {"anatomical_landmark_names", s.anatomical_landmark_names},
           {"landmarks_used", s.landmarks_used},
           {"energy", to_json(s.final_energy)},
           {"correspondences", to_json(s.final_correspondences)},

@@ -12,6 +12,10 @@ nlohmann::json to_json(const CorrespondenceStats& s);
 nlohmann::json to_json(const EnergyBreakdown& e);
 /// {"<landmark>": {"distance_mm", "tolerance_mm", "factor", "flagged"}, …}
 nlohmann::json landmark_checks_json(const std::vector<LandmarkCheck>& checks);
+/// The landmark-free initialisation's choice: {"chosen", "runner_up", "margin" (null = no
+/// runner-up), "confident", "body_frame", "arm_abduction_deg", "arm_pose", "candidates"}; null when
+/// initialised from landmarks.
+nlohmann::json orientation_json(const OrientationSummary& o);
 /// {"<phase>": seconds, …} in order.
 nlohmann::json timings_json(const std::vector<PhaseTime>& timings);
 

@@ -1,5 +1,6 @@
 #include "breastfit/fit/initialization.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -9,9 +10,7 @@
 #include <Eigen/Geometry>
 
 #include "breastfit/core/errors.h"
-#include "breastfit/fit/stage_minimizer.h"
 #include "breastfit/fit/parallel_chunks.h"
-#include "breastfit/fit/problem.h"
 #include "breastfit/mesh/landmark_names.h"
 #include "breastfit/model/pose_evaluator.h"
 
@@ -106,9 +105,10 @@ LandmarkInitialization initialize_from_landmarks(const model::RiggedModel& model
   return out;
 }
 
-void initialize_arms(const model::RiggedModel& model, const ScanTarget& scan, model::PoseParams& params,
-                     int threads) {
+std::array<double, 2> initialize_arms(const model::RiggedModel& model, const ScanTarget& scan,
+                                      model::PoseParams& params, bool two_way, int threads) {
   constexpr double kMissMm = 40.0;  // score of a vertex with nothing on the scan within this distance
+  std::array<double, 2> raised{0.0, 0.0};
   std::vector<int> angles_deg;
   for (int deg = -40; deg <= 90; deg += 10) angles_deg.push_back(deg);
   for (const char* name : {"upper_arm_R", "upper_arm_L"}) {
@@ -120,6 +120,19 @@ void initialize_arms(const model::RiggedModel& model, const ScanTarget& scan, mo
       for (model::SkinWeights::InnerIterator it(model.weights, i); it; ++it)
         if (it.col() == *bone && it.value() > 0.6) arm.push_back(i);
     if (arm.size() < 10) continue;
+    // Two-way: the scan's samples beyond this shoulder (body frame: lateral of the joint, not far
+    // below it) must lie near the arm too, so that an arm lowered onto the chest wall, which lies
+    // on the scan as well, does not win.
+    std::vector<Vec3> zone;
+    if (two_way) {
+      const Vec3 pivot = model.bones[*bone].pivot;
+      const model::Similarity to_body = params.global.inverse();
+      const Points& S = scan.sample_points();
+      for (Index i = 0; i < S.rows(); ++i) {
+        const Vec3 b = to_body.apply(S.row(i).transpose());
+        if (b.x() * pivot.x() > pivot.x() * pivot.x() && b.z() > pivot.z() - 350.0) zone.push_back(S.row(i).transpose());
+      }
+    }
     const Quat base = params.bones[*bone].rotation;
     // Positive angles raise the arm: about +y (posterior) for the left arm, −y for the right.
     const double sign = std::string(name).back() == 'L' ? 1.0 : -1.0;
@@ -137,65 +150,32 @@ void initialize_arms(const model::RiggedModel& model, const ScanTarget& scan, mo
         const auto m = scan.match(V.row(arm[k]).transpose(), kMissMm);
         score += m ? std::sqrt(m->sq_dist) : kMissMm;
       }
+      if (!zone.empty()) {
+        score /= static_cast<double>((arm.size() + 1) / 2);
+        double reverse = 0;
+        for (const Vec3& z : zone) {
+          double nearest = kMissMm * kMissMm;
+          for (size_t k = 0; k < arm.size(); k += 2) nearest = std::min(nearest, (V.row(arm[k]).transpose() - z).squaredNorm());
+          reverse += std::sqrt(nearest);
+        }
+        score += reverse / static_cast<double>(zone.size());
+      }
       scores[static_cast<size_t>(a)] = score;
     });
     double best_score = std::numeric_limits<double>::infinity();
     Quat best = base;
+    int best_deg = 0;
     for (size_t a = 0; a < rotations.size(); ++a) {
       if (scores[a] < best_score - 1e-9) {
         best_score = scores[a];
         best = rotations[a];
+        best_deg = angles_deg[a];
       }
     }
     params.bones[*bone].rotation = best;
+    raised[std::string(name).back() == 'L' ? 1 : 0] = best_deg;
   }
-}
-
-model::Similarity initialize_without_landmarks(const model::RiggedModel& model, ScanTarget& scan,
-                                               const FitOptions& options) {
-  Vec3 cm, cs, vm, vs;
-  Mat3 Em, Es;
-  principal_axes(model.rest.V, cm, Em, vm);
-  principal_axes(scan.sample_points().rows() >= 10 ? scan.sample_points() : scan.mesh().V, cs, Es, vs);
-  const double scale = std::sqrt(std::max(vs.sum(), 1e-12) / std::max(vm.sum(), 1e-12));
-
-  // A short rigid + scale ICP from each of the 24 proper axis assignments; keep the best.
-  FitOptions quick = options;
-  quick.correspondences.max_distance_start_mm = std::max(60.0, options.correspondences.max_distance_start_mm);
-  quick.correspondences.max_distance_end_mm = std::max(20.0, options.correspondences.max_distance_end_mm);
-  quick.correspondences.reverse_samples = 0;
-  StageOptions rigid{"landmark_free_rigid", true, false, false, 6, 8};
-  const std::vector<LandmarkTarget> none;
-  model::Similarity best;
-  double best_score = std::numeric_limits<double>::infinity();
-  const std::array<std::array<int, 3>, 6> perms{{{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}}};
-  for (const auto& perm : perms) {
-    for (int signs = 0; signs < 8; ++signs) {
-      Mat3 P = Mat3::Zero();
-      for (int k = 0; k < 3; ++k) P(perm[k], k) = (signs >> k) & 1 ? -1.0 : 1.0;
-      const Mat3 R = Es * P * Em.transpose();
-      if (R.determinant() < 0) continue;
-      model::PoseParams params = model::PoseParams::identity(model);
-      params.global.rotation = Quat(R).normalized();
-      params.global.scale = scale;
-      params.global.translation = cs - scale * (R * cm);
-      Problem problem(model, scan, quick, none);
-      FitSummary s;
-      problem.evaluator().set_params(params);
-      problem.orient_scan_normals(quick.correspondences.max_distance_start_mm);
-      if (minimize_stages(problem, {rigid}, params, s) == Termination::NumericalFailure) continue;
-      problem.evaluator().set_params(params);
-      problem.update_correspondences(quick.correspondences.max_distance_end_mm, 4, false);
-      const auto& st = problem.stats();
-      const double kept = st.candidates ? static_cast<double>(st.kept) / st.candidates : 0.0;
-      const double score = problem.kept_mae_mm() + 40.0 * (1.0 - kept);
-      if (score < best_score) {
-        best_score = score;
-        best = params.global;
-      }
-    }
-  }
-  return best;
+  return raised;
 }
 
 }  // namespace breastfit::fit

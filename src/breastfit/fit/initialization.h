@@ -1,6 +1,8 @@
 #pragma once
 /// \file Initial placement of the template in the scan's frame: a similarity from landmarks
-/// (Umeyama with scale), detection of left/right-swapped labels, and a landmark-free multi-start.
+/// (Umeyama with scale), detection of left/right-swapped labels, and the arms' abduction. The
+/// landmark-free placement is orientation_search.h.
+#include <array>
 #include <string>
 #include <vector>
 
@@ -34,12 +36,10 @@ LandmarkInitialization initialize_from_landmarks(const model::RiggedModel& model
 /// hanging (standing) to 90° on arm boards (supine), further than closest points can pull them.
 /// Bones that are missing are skipped. \pre params.global already places the template on the scan.
 /// The angles are scored on `threads` threads (≤ 0: all cores); the choice does not depend on it.
-void initialize_arms(const model::RiggedModel& model, const ScanTarget& scan, model::PoseParams& params,
-                     int threads = 0);
-
-/// Landmark-free initialisation: principal axes of the scan and of the template, 24 axis
-/// assignments, a short rigid ICP from each, the best kept. Deterministic.
-model::Similarity initialize_without_landmarks(const model::RiggedModel& model, ScanTarget& scan,
-                                               const FitOptions& options);
+/// `two_way`: the scan's samples beyond each shoulder must also lie near the arm (without
+/// landmarks an arm lowered onto the chest wall lies on the scan too).
+/// \returns the angle each arm was raised by (R, L; degrees, negative = lowered; 0 when missing).
+std::array<double, 2> initialize_arms(const model::RiggedModel& model, const ScanTarget& scan, model::PoseParams& params,
+                                      bool two_way = false);
 
 }  // namespace breastfit::fit

@@ -44,6 +44,7 @@ class Problem {
   void orient_scan_normals(double max_distance_mm);
 
   const std::vector<Correspondence>& pairs() const { return pairs_; }
+  const std::vector<ReverseCorrespondence>& reverse_pairs() const { return reverse_pairs_; }
   const CorrespondenceStats& stats() const { return stats_; }
   const CorrespondenceStats& reverse_stats() const { return reverse_stats_; }
   /// Mean |point-to-plane distance| over the current pairs (∞ when none).

@@ -2,11 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <set>
 
 #include "breastfit/core/errors.h"
 #include "breastfit/core/timer.h"
+#include "breastfit/fit/breast_fold.h"
 #include "breastfit/fit/initialization.h"
+#include "breastfit/fit/orientation_search.h"
 #include "breastfit/fit/stage_minimizer.h"
 #include "breastfit/fit/problem.h"
 #include "breastfit/fit/sliding_landmarks.h"
@@ -92,6 +95,92 @@ std::vector<LandmarkCheck> check_landmarks(const model::RiggedModel& model, cons
   return out;
 }
 
+// The search's choice into the summary: the one line, the report's details, a warning when a
+// different orientation fits almost as well.
+void summarize_orientation(const OrientationSearch& search, const FitOptions& options, FitSummary& summary) {
+  OrientationSummary& o = summary.orientation;
+  o.searched = true;
+  o.chosen = search.hypotheses.empty() ? std::string("the shape's body frame") : search.hypotheses.front().name;
+  o.runner_up = search.runner_up;
+  o.margin = search.margin;
+  o.confident = !(search.margin < options.orientation_min_margin);
+  o.body_frame = search.body_frame;
+  o.arm_abduction_deg[0] = search.arm_abduction_deg[0];
+  o.arm_abduction_deg[1] = search.arm_abduction_deg[1];
+  o.arm_pose = search.arm_pose;
+  for (const auto& h : search.hypotheses) o.candidates.push_back({h.name, h.score, h.refined});
+  const std::string margin =
+      std::isfinite(search.margin) ? fmt(100 * search.margin, 0) + " % better than '" + search.runner_up + "'"
+                                   : std::string("no other orientation fits");
+  summary.initialization_detail = "landmark-free: body axes from the scan's shape, " +
+                                  std::to_string(search.hypotheses.size()) + " orientations tried, kept '" +
+                                  o.chosen + "' (" + margin + "); " + o.arm_pose + " (the scan is " +
+                                  fmt(search.width_to_height, 2) + "x wider than high)";
+  if (!o.confident)
+    summary.warnings.push_back("the landmark-free orientation is uncertain: '" + o.chosen + "' fits only " +
+                               fmt(100 * search.margin, 0) + " % better than '" + search.runner_up +
+                               "'; check the landmarks and drawings, or give at least 3 landmarks");
+}
+
+bool is_given(const std::vector<LandmarkTarget>& given, const std::string& name) {
+  return std::any_of(given.begin(), given.end(), [&](const LandmarkTarget& t) { return t.name == name; });
+}
+
+// Targets for the nipples not in `given`: the breast's tip on the scan near each posed nipple.
+std::vector<LandmarkTarget> breast_tip_targets(const model::RiggedModel& model, const Points& V,
+                                               const model::PoseParams& params, const ScanTarget& scan,
+                                               const std::vector<LandmarkTarget>& given) {
+  std::vector<LandmarkTarget> out;
+  const Points N = mesh::vertex_normals(V, model.rest.F);
+  for (const char* name : {"nipple_R", "nipple_L"}) {
+    const auto idx = model.landmark_index(name);
+    if (!idx || is_given(given, name)) continue;
+    const Vec3 nipple = model_landmark_position(model, *idx, V, params);
+    if (const auto tip = breast_tip_on_scan(scan.mesh().V, V, N, nipple))
+      out.push_back({name, *idx, *tip, landmark_weight(name)});
+  }
+  return out;
+}
+
+// Targets for the lowest breast points not in `held`: the fold found on the scan below each
+// nipple held (given or the breast's tip), when the detector is sure.
+std::vector<LandmarkTarget> breast_fold_targets(const model::RiggedModel& model, const Points& V,
+                                                const model::PoseParams& params, const ScanTarget& scan,
+                                                const std::vector<LandmarkTarget>& held) {
+  std::vector<LandmarkTarget> out;
+  const Points N = mesh::vertex_normals(V, model.rest.F);
+  // Up along the sternum (the frame the fold's depth behind the tip is measured in).
+  Vec3 up = posed_vertical_axis(model, params);
+  const auto notch = model.landmark_index("sternal_notch"), xiphoid = model.landmark_index("xiphoid");
+  if (notch && xiphoid)
+    up = (model_landmark_position(model, *notch, V, params) - model_landmark_position(model, *xiphoid, V, params))
+             .normalized();
+  // The body's front: the model's outward normals around both nipples (their lateral parts
+  // cancel), level.
+  Vec3 front = Vec3::Zero();
+  for (const char* name : {"nipple_R", "nipple_L"}) {
+    const auto idx = model.landmark_index(name);
+    if (!idx) return out;
+    const Vec3 nipple = model_landmark_position(model, *idx, V, params);
+    for (Index i = 0; i < V.rows(); ++i)
+      if ((V.row(i).transpose() - nipple).norm() < 40.0) front += N.row(i).transpose();
+  }
+  front -= front.dot(up) * up;
+  if (front.norm() <= 0) return out;
+  front.normalize();
+  for (const char* side : {"R", "L"}) {
+    const std::string name = std::string("lowest_breast_") + side;
+    const auto idx = model.landmark_index(name);
+    const auto nipple = std::find_if(held.begin(), held.end(),
+                                     [&](const LandmarkTarget& t) { return t.name == std::string("nipple_") + side; });
+    if (!idx || nipple == held.end() || is_given(held, name)) continue;
+    const Vec3 fitted = model_landmark_position(model, *idx, V, params);
+    if (const auto fold = lowest_breast_on_scan(scan.mesh().V, nipple->position, fitted, up, front))
+      out.push_back({name, *idx, *fold, landmark_weight(name)});
+  }
+  return out;
+}
+
 std::string termination_message(const FitSummary& s) {
   const std::string stage = s.stages.empty() ? std::string("-") : s.stages.back().name;
   const int n = static_cast<int>(s.iterations.size());
@@ -127,6 +216,8 @@ FitResult register_template(const model::RiggedModel& model, ScanTarget& scan, s
     const LandmarkInitialization init = initialize_from_landmarks(model, landmarks);
     params.global = init.similarity;
     summary.initialization = "landmarks";
+    summary.initialization_detail = "from " + std::to_string(landmarks.size()) + " landmarks (RMS " +
+                                    fmt(init.rms_mm) + " mm after the similarity)";
     if (init.swapped)
       summary.warnings.push_back("the landmarks' _R/_L labels look swapped (RMS " + fmt(init.swapped_rms_mm) +
                                  " mm as given, " + fmt(init.rms_mm) + " mm with R and L exchanged): corrected");
@@ -134,26 +225,52 @@ FitResult register_template(const model::RiggedModel& model, ScanTarget& scan, s
     if (!landmarks.empty())
       summary.warnings.push_back("fewer than 3 landmarks: initialised without landmarks; the " +
                                  std::to_string(landmarks.size()) + " given are used in the fit");
-    params.global = initialize_without_landmarks(model, scan, options);
+    const OrientationSearch search = search_orientation(model, scan, options);
+    params = search.params;
     summary.initialization = "landmark-free";
-    summary.warnings.push_back(
-        "registered without landmarks: the template's orientation on the scan comes from its shape alone "
-        "and can be wrong (on the benchmark: landmark errors of 12-38 mm, one case upside down); check the "
-        "landmarks and drawings before use, or give at least 3 landmarks");
+    summarize_orientation(search, options, summary);
   }
   summary.landmarks_used = static_cast<int>(landmarks.size());
 
-  Problem problem(model, scan, options, landmarks);
-  problem.evaluator().set_params(params);
-  problem.orient_scan_normals(options.correspondences.max_distance_start_mm);
-  initialize_arms(model, scan, params, options.threads);
+  auto problem_ptr = std::make_unique<Problem>(model, scan, options, landmarks);
+  problem_ptr->evaluator().set_params(params);
+  problem_ptr->orient_scan_normals(options.correspondences.max_distance_start_mm);
+  if (landmarks.size() >= 3) initialize_arms(model, scan, params, false, options.threads);  // landmark-free: done by the search
   summary.timings.push_back({"initialization", phase.seconds()});
 
   std::vector<StageOptions> stages;
   if (landmarks.size() >= 3) stages.push_back(options.landmark_pose);
   for (const auto& s : {options.rigid, options.pose, options.shape, options.refine}) stages.push_back(s);
-  summary.termination = minimize_stages(problem, stages, params, summary, on_iteration);
-  finish_fit(model, scan, problem, params, landmarks, options, result);
+  // Anatomy held where no landmark was given: without landmarks the breasts can slide over the
+  // scan (the surface barely changes, the nipples move) and the lower pole stays too high; once
+  // posed, the breast tips and the folds found on the scan hold the nipples and the lowest breast
+  // points for the shape and refine stages.
+  const bool hold_nipples = landmarks.size() < 3 && options.anatomical_nipples;
+  // Landmark-free only for now: with the notch and the nipples given, the folds helped both
+  // referee sets but made a synthetic supine case worse (docs/REGISTRATION.md).
+  const bool hold_folds = landmarks.size() < 3 && options.anatomical_lowest_breast &&
+                          !(is_given(landmarks, "lowest_breast_R") && is_given(landmarks, "lowest_breast_L"));
+  if (hold_nipples || hold_folds) {
+    const auto coarse_end = stages.end() - 2;  // shape and refine follow
+    const std::vector<StageOptions> coarse(stages.begin(), coarse_end);
+    summary.termination = minimize_stages(*problem_ptr, coarse, params, summary, on_iteration);
+    if (summary.termination != Termination::Aborted && summary.termination != Termination::NumericalFailure) {
+      problem_ptr->evaluator().set_params(params);
+      const Points& V = problem_ptr->evaluator().vertices();
+      std::vector<LandmarkTarget> held = landmarks;
+      if (hold_nipples)
+        for (auto& t : breast_tip_targets(model, V, params, scan, landmarks)) held.push_back(t);
+      if (hold_folds)
+        for (auto& t : breast_fold_targets(model, V, params, scan, held)) held.push_back(t);
+      summary.anatomical_landmarks = static_cast<int>(held.size() - landmarks.size());
+      for (size_t i = landmarks.size(); i < held.size(); ++i) summary.anatomical_landmark_names.push_back(held[i].name);
+      problem_ptr = std::make_unique<Problem>(model, scan, options, held);
+      summary.termination = minimize_stages(*problem_ptr, {coarse_end, stages.end()}, params, summary, on_iteration);
+    }
+  } else {
+    summary.termination = minimize_stages(*problem_ptr, stages, params, summary, on_iteration);
+  }
+  finish_fit(model, scan, *problem_ptr, params, landmarks, options, result);
   summary.seconds = timer.seconds();
   return result;
 }

@@ -129,7 +129,8 @@ void registration_table(std::string& h, const RegisterResult& r, const ReportFig
                        (s.converged() ? ": converged" : "") + ")</span>");
   row(h, "Initialisation",
       html_escape(s.initialization) + ", " + std::to_string(s.landmarks_used) + " landmark" +
-          (s.landmarks_used == 1 ? "" : "s") + " used");
+          (s.landmarks_used == 1 ? "" : "s") + " used" +
+          (s.initialization_detail.empty() ? "" : "<br><span class=\"note\">" + html_escape(s.initialization_detail) + "</span>"));
   const auto& e = r.surface;
   row(h, "Surface error",
       "MAE <b>" + num(e.mae, 2) + " mm</b>, SD " + num(e.sd, 2) + " mm, max " + num(e.max, 1) + " mm <span class=\"note\">(" +

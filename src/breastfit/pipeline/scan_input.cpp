@@ -43,6 +43,8 @@ PreparedScan prepare_scan(const TriangleMesh& scan, const std::string& name, std
   } catch (const InvalidInput& e) {
     throw InvalidInput(name + ": " + e.what());
   }
+  out.units_detected = !requested;
+  out.extent = mesh::max_extent(scan.V);
   out.to_mm = mesh::to_mm_factor(out.units);
   const double extent_mm = mesh::max_extent(scan.V) * out.to_mm;
   if (extent_mm < 150.0 || extent_mm > 1500.0) {

@@ -17,6 +17,8 @@ struct PreparedScan {
   mesh::Units units = mesh::Units::Millimetres;  ///< the file's units
   double to_mm = 1.0;            ///< file units → mm
   bool was_point_cloud = false;
+  bool units_detected = false;   ///< the units came from the scan's extent (not requested)
+  double extent = 0;             ///< largest bounding-box extent, file units
   std::vector<std::string> warnings;
 };
 

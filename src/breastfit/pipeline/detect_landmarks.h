@@ -1,0 +1,36 @@
+#pragma once
+/// \file The 12 landmarks found on a scan without any given (`breastfit landmarks`): a landmark-free
+/// registration (fit/orientation_search.h; the nipples held at the breast tips found on the scan),
+/// then each of the fitted template's landmarks snapped onto the scan, with a confidence. The
+/// result is a starting point a person checks and corrects before `register --landmarks`.
+#include <string>
+#include <vector>
+
+#include "breastfit/core/types.h"
+#include "breastfit/pipeline/register_scan.h"
+
+namespace breastfit::pipeline {
+
+struct DetectedLandmark {
+  std::string name;
+  Vec3 position_mm = Vec3::Zero();  ///< on the scan, scanner frame, mm
+  /// In [0, 1]: the orientation's confidence (score margin) times the scan's support at the point
+  /// (exp(−distance from the fitted landmark to the scan / 10 mm)).
+  double confidence = 0;
+  std::string method;               ///< "breast tip on the scan" or "fitted template, snapped to the scan"
+};
+
+struct DetectedLandmarks {
+  std::vector<DetectedLandmark> landmarks;  ///< the template's landmarks, in its order
+  RegisterResult registration;              ///< the landmark-free fit they come from
+};
+
+/// Runs `request` without landmarks (request.landmarks and use_landmarks are ignored) and returns
+/// the template's landmarks on the scan. \throws as register_scan; InvalidInput when the fit is not
+/// usable (its verdict).
+DetectedLandmarks detect_landmarks(RegisterRequest request);
+
+/// The detected landmarks as markups (mm), for io::write_markups.
+Markups to_markups(const std::vector<DetectedLandmark>& landmarks);
+
+}  // namespace breastfit::pipeline

@@ -1,0 +1,93 @@
+// The lowest breast point found on synthetic scans (standing and supine) from the breast's tip,
+// starting from a fitted point as far off as the fit leaves it without the landmark.
+#include "breastfit/fit/breast_fold.h"
+
+#include <gtest/gtest.h>
+
+#include <map>
+#include <string>
+
+#include "breastfit/synth/synth_case.h"
+#include "support/default_template.h"
+
+namespace breastfit::fit {
+namespace {
+
+const synth::SynthCase& synth_case(synth::PoseType pose) {
+  static std::map<synth::PoseType, synth::SynthCase> cases;
+  auto it = cases.find(pose);
+  if (it == cases.end()) {
+    synth::SynthOptions o;
+    o.seed = pose == synth::PoseType::Standing ? 11 : 12;
+    o.pose = pose;
+    it = cases.emplace(pose, synth::make_case(*test::default_template(), o)).first;
+  }
+  return it->second;
+}
+
+Vec3 truth(const synth::SynthCase& c, const std::string& name) {
+  for (const auto& p : c.truth_landmarks)
+    if (p.name == name) return p.position;
+  ADD_FAILURE() << "no truth landmark " << name;
+  return Vec3::Zero();
+}
+
+struct Frame {
+  Vec3 up, front;
+};
+
+// The body's frame from the truth: up along the sternum, front level through the nipples.
+Frame body_frame(const synth::SynthCase& c) {
+  const Vec3 up = (truth(c, "sternal_notch") - truth(c, "xiphoid")).normalized();
+  Vec3 side = truth(c, "nipple_L") - truth(c, "nipple_R");
+  side = (side - side.dot(up) * up).normalized();
+  Vec3 front = up.cross(side);
+  const Vec3 nipples = 0.5 * (truth(c, "nipple_L") + truth(c, "nipple_R"));
+  if ((nipples - truth(c, "xiphoid")).dot(front) < 0) front = -front;
+  return {up, front};
+}
+
+void expect_fold_found(synth::PoseType pose) {
+  const synth::SynthCase& c = synth_case(pose);
+  const Frame f = body_frame(c);
+  for (const char* side : {"R", "L"}) {
+    const Vec3 lowest = truth(c, std::string("lowest_breast_") + side);
+    const Vec3 tip = truth(c, std::string("nipple_") + side);
+    // The fitted lower pole without the landmark: about 35 mm too high.
+    const Vec3 fitted = lowest + 35.0 * f.up;
+    const auto fold = lowest_breast_on_scan(c.scan.V, tip, fitted, f.up, f.front);
+    ASSERT_TRUE(fold) << synth::pose_type_name(pose) << " " << side;
+    EXPECT_LT((*fold - lowest).norm(), 20.0) << synth::pose_type_name(pose) << " " << side << ": "
+                                             << fold->transpose() << " vs " << lowest.transpose();
+    EXPECT_LT((*fold - lowest).norm(), (fitted - lowest).norm());
+  }
+}
+
+TEST(BreastFold, FindsTheLowestBreastPointOnAStandingScan) { expect_fold_found(synth::PoseType::Standing); }
+
+TEST(BreastFold, FindsTheLowestBreastPointOnASupineScan) { expect_fold_found(synth::PoseType::Supine); }
+
+TEST(BreastFold, RefusesWhenUnsure) {
+  const synth::SynthCase& c = synth_case(synth::PoseType::Standing);
+  const Frame f = body_frame(c);
+  const Vec3 tip = truth(c, "nipple_R");
+  const Vec3 fitted = truth(c, "lowest_breast_R") + 35.0 * f.up;
+  // A band missing below the tip (40 mm high, all round): the profile has a hole.
+  Points holed(c.scan.V.rows(), 3);
+  Index n = 0;
+  for (Index i = 0; i < c.scan.V.rows(); ++i) {
+    const Vec3 d = c.scan.V.row(i).transpose() - tip;
+    const double drop = -d.dot(f.up);
+    if (drop > 15 && drop < 55) continue;
+    holed.row(n++) = c.scan.V.row(i);
+  }
+  holed.conservativeResize(n, 3);
+  EXPECT_FALSE(lowest_breast_on_scan(holed, tip, fitted, f.up, f.front));
+  // A tip that is not in front of the body (the skin below never recedes that far): no fold.
+  EXPECT_FALSE(lowest_breast_on_scan(c.scan.V, tip - 80.0 * f.front, fitted, f.up, f.front));
+  // No scan at all.
+  EXPECT_FALSE(lowest_breast_on_scan(Points(0, 3), tip, fitted, f.up, f.front));
+}
+
+}  // namespace
+}  // namespace breastfit::fit

@@ -1,0 +1,45 @@
+// Automatic landmarks on a synthetic scan: every template landmark, on the scan, near the truth.
+#include "breastfit/pipeline/detect_landmarks.h"
+
+#include <gtest/gtest.h>
+
+#include "breastfit/synth/synth_case.h"
+#include "support/default_template.h"
+
+namespace breastfit::pipeline {
+namespace {
+
+TEST(DetectLandmarks, FindsEveryLandmarkOnTheScanNearTheTruth) {
+  synth::SynthOptions o;
+  o.seed = 12;
+  o.misalign_rotation_deg = 150;
+  const synth::SynthCase c = synth::make_case(*test::default_template(), o);
+  RegisterRequest req;
+  req.scan = c.scan;
+  req.model = test::default_template();
+  req.landmarks = LandmarkSet{};  // ignored
+  const DetectedLandmarks d = detect_landmarks(req);
+  ASSERT_EQ(d.landmarks.size(), test::default_template()->landmarks.size());
+  EXPECT_EQ(d.registration.fit.summary.initialization, "landmark-free");
+  double sum = 0;
+  int n = 0;
+  for (const auto& l : d.landmarks) {
+    EXPECT_GE(l.confidence, 0.0) << l.name;
+    EXPECT_LE(l.confidence, 1.0) << l.name;
+    if (l.name == "nipple_R" || l.name == "nipple_L") EXPECT_EQ(l.method, "breast tip on the scan");
+    const bool lowest = l.name == "lowest_breast_R" || l.name == "lowest_breast_L";
+    if (lowest) EXPECT_EQ(l.method, "breast fold on the scan") << l.name;
+    for (const auto& t : c.truth_landmarks)
+      if (t.name == l.name) {
+        sum += (l.position_mm - t.position).norm();
+        ++n;
+        if (lowest) EXPECT_LT((l.position_mm - t.position).norm(), 20.0) << l.name;
+      }
+  }
+  ASSERT_GT(n, 0);
+  EXPECT_LT(sum / n, 30.0);
+  EXPECT_EQ(to_markups(d.landmarks).points.size(), d.landmarks.size());
+}
+
+}  // namespace
+}  // namespace breastfit::pipeline
