@@ -8,7 +8,7 @@ The C++ library through pybind11, numpy arrays in and out (docs/PYTHON.md):
     fit.save("out")                             # the output set of `breastfit register`
 
 Bad input raises ValueError, a file problem OSError. `breastfit.cohort` runs a cohort on a Dask
-cluster. Automatic landmarks (`landmarks(scan)`) are not part of this module yet.
+cluster. `landmarks(scan)` finds the 12 landmarks automatically (to check before register()).
 """
 import os as _os
 
@@ -28,6 +28,7 @@ from ._breastfit import (  # noqa: E402,F401  (the public API)
     Mesh,
     Template,
     breast_volumes,
+    landmarks,
     map_curves,
     pose,
     read_markups,
@@ -38,7 +39,7 @@ from ._breastfit import (  # noqa: E402,F401  (the public API)
 )
 
 __all__ = [
-    "Curve", "Drawing", "Fit", "Markups", "Mesh", "Template", "breast_volumes", "map_curves", "pose",
+    "Curve", "Drawing", "Fit", "Markups", "Mesh", "Template", "breast_volumes", "landmarks", "map_curves", "pose",
     "read_markups", "read_mesh", "register", "write_markups", "write_mesh",
 ]
 __version__ = "0.1.0"

@@ -83,5 +83,6 @@ void bind_template(py::module_& m);
 void bind_register(py::module_& m);
 void bind_transfer(py::module_& m);
 void bind_cohort(py::module_& m);
+void bind_landmarks(py::module_& m);
 
 }  // namespace breastfit::python

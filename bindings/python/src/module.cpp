@@ -11,4 +11,5 @@ PYBIND11_MODULE(_breastfit, m) {
   bind_register(m);
   bind_transfer(m);
   bind_cohort(m);
+  bind_landmarks(m);
 }

@@ -40,6 +40,6 @@ LandmarkInitialization initialize_from_landmarks(const model::RiggedModel& model
 /// landmarks an arm lowered onto the chest wall lies on the scan too).
 /// \returns the angle each arm was raised by (R, L; degrees, negative = lowered; 0 when missing).
 std::array<double, 2> initialize_arms(const model::RiggedModel& model, const ScanTarget& scan, model::PoseParams& params,
-                                      bool two_way = false);
+                                      bool two_way = false, int threads = 0);
 
 }  // namespace breastfit::fit

@@ -182,7 +182,7 @@ OrientationSearch search_orientation(const model::RiggedModel& model, ScanTarget
     model::PoseParams& params = fitted[i];
     problem.evaluator().set_params(params);
     problem.orient_scan_normals(quick.correspondences.max_distance_end_mm);
-    raised[i] = initialize_arms(model, scan, params, true);
+    raised[i] = initialize_arms(model, scan, params, true, options.threads);
     FitSummary ignored;
     if (minimize_stages(problem, {pose}, params, ignored) == Termination::NumericalFailure) continue;
     problem.evaluator().set_params(params);
