@@ -57,6 +57,9 @@ def run_cohort(cases: Sequence[str | os.PathLike], out: str | os.PathLike, *, cl
     resolved = _breastfit.resolve_cases([os.fspath(c) for c in cases])
     out = os.path.abspath(os.fspath(out))
     os.makedirs(out, exist_ok=True)
+    # One fit per worker thread: each fit on one thread unless the options say otherwise (threads
+    # change only the speed, never the result).
+    options = {"threads": 1, **(options or {})}
     settings = {"template": os.path.abspath(template) if template else None, "options": options, "units": units,
                 "force": force, "report_html": report_html, "ignore_landmarks": ignore_landmarks}
     cases_abs = [(n, os.path.abspath(s), os.path.abspath(l) if l else None) for n, s, l in resolved]

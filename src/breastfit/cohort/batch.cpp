@@ -21,6 +21,9 @@ std::vector<CaseRecord> run_batch(const std::vector<CohortCase>& cases, const fs
   if (ec) throw IoError(out_root.string(), "cannot create the output directory: " + ec.message());
   CaseRunOptions run = options.run;
   if (!run.model) run.model = std::make_shared<const model::RiggedModel>(model::load_default_template());
+  // Cases run side by side use the cores; each fit on one thread unless asked otherwise (threads
+  // only change the speed, never the result: fit/parallel_chunks.h).
+  if (options.jobs > 1 && run.fit.threads == 0) run.fit.threads = 1;
 
   std::vector<CaseRecord> records(cases.size());
   std::atomic<size_t> next{0};

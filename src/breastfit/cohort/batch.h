@@ -13,7 +13,7 @@ namespace breastfit::cohort {
 
 struct BatchOptions {
   CaseRunOptions run;  ///< per case (template, fit options, force, report.html)
-  int jobs = 1;        ///< cases registered at the same time (threads; >= 1)
+  int jobs = 1;        ///< cases registered at the same time (threads; >= 1; > 1: each fit on one thread unless run.fit.threads says otherwise)
 };
 
 /// Called after each case, from the worker that ran it but never concurrently: `done` cases of
