@@ -162,6 +162,19 @@ std::filesystem::path& installed_template() {
   static std::filesystem::path path;
   return path;
 }
+
+// The shipped default template's file: the installed one next to the package, unless
+// BREASTFIT_TEMPLATE names another (model::default_template_path() honours it).
+std::filesystem::path default_template_file() {
+  const char* env = std::getenv("BREASTFIT_TEMPLATE");
+  const bool installed = (!env || !*env) && !installed_template().empty();
+  return installed ? installed_template() : model::default_template_path();
+}
+
+const Template& template_argument(const py::handle& value) {
+  if (!py::isinstance<Template>(value)) throw InvalidInput("template: expected a breastfit.Template or None");
+  return value.cast<const Template&>();
+}
 }  // namespace
 
 void set_installed_template(const std::filesystem::path& path) { installed_template() = path; }
@@ -174,27 +187,17 @@ std::shared_ptr<const model::RiggedModel> template_from_python(const py::handle&
       std::shared_ptr<const model::RiggedModel> loaded;
       {
         py::gil_scoped_release release;
-        const char* env = std::getenv("BREASTFIT_TEMPLATE");
-        const bool installed = (!env || !*env) && !installed_template().empty();
-        loaded = std::make_shared<const model::RiggedModel>(installed ? model::load_gltf(installed_template())
-                                                                      : model::load_default_template());
+        loaded = std::make_shared<const model::RiggedModel>(model::load_gltf(default_template_file()));
       }
       if (!default_model) default_model = std::move(loaded);  // another thread may have been first
     }
     return default_model;
   }
-  if (!py::isinstance<Template>(value)) throw InvalidInput("template: expected a breastfit.Template or None");
-  return value.cast<const Template&>().model;
+  return template_argument(value).model;
 }
 
 std::filesystem::path template_path_from_python(const py::handle& value) {
-  if (value.is_none()) {
-    const char* env = std::getenv("BREASTFIT_TEMPLATE");
-    const bool installed = (!env || !*env) && !installed_template().empty();
-    return installed ? installed_template() : model::default_template_path();
-  }
-  if (!py::isinstance<Template>(value)) throw InvalidInput("template: expected a breastfit.Template or None");
-  return value.cast<const Template&>().path;
+  return value.is_none() ? default_template_file() : template_argument(value).path;
 }
 
 pipeline::Provenance provenance_from_python(const std::vector<std::pair<std::string, std::filesystem::path>>& files) {
