@@ -82,6 +82,7 @@ function setView(name) {
   camera.up.copy(up);
   controls.target.copy(c);
   controls.update();
+  camera.updateMatrixWorld();  // picking and projection use the new view before the next frame
   needsRender = true;
 }
 
@@ -522,6 +523,7 @@ for (const b of document.querySelectorAll('#view-buttons button')) b.onclick = (
 // A small hook for the browser test: screen positions of 3D points, and the page's state.
 window.breastfitTest = {
   project(p) {
+    camera.updateMatrixWorld();
     const v = new THREE.Vector3(...p).project(camera);
     const r = canvas.getBoundingClientRect();
     return { x: r.left + (v.x + 1) / 2 * r.width, y: r.top + (1 - v.y) / 2 * r.height };
