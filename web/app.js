@@ -87,14 +87,23 @@ function setView(name) {
 }
 
 // ---------- state ----------
+// suggested: name -> {confidence, method} of the landmarks "Suggest" placed and nobody has
+// moved since (a moved one counts as checked by the user).
 const state = {
   scanId: null, scanName: '', names: [], landmarks: {}, selected: null,
-  result: null, fitRunning: false, moved: false,
+  result: null, job: null, moved: false, suggested: {},
 };
+
+// A suggested landmark below this confidence is marked for the user to check.
+const LOW_CONFIDENCE = 0.5;
+function lowConfidence(name) {
+  const s = state.suggested[name];
+  return !!s && s.confidence < LOW_CONFIDENCE;
+}
 
 function landmarkColour(name) {
   const check = state.result && state.result.landmark_checks[name];
-  return check && check.flagged ? 0xe0a000 : 0xd71920;
+  return (check && check.flagged) || lowConfidence(name) ? 0xe0a000 : 0xd71920;
 }
 
 function rebuildLandmarks() {
@@ -141,6 +150,15 @@ function rebuildLandmarkList() {
     li.dataset.name = name;
     if (name === state.selected) li.classList.add('selected');
     if (state.landmarks[name]) li.classList.add('placed');
+    const sug = state.suggested[name];
+    if (sug) {
+      const span = document.createElement('span');
+      span.className = 'confidence';
+      span.title = `suggested: ${sug.method}`;
+      span.textContent = ` ${Math.round(100 * sug.confidence)} %` + (lowConfidence(name) ? ' — low: check it' : '');
+      li.appendChild(span);
+      if (lowConfidence(name)) li.classList.add('low');
+    }
     const check = state.result && state.result.landmark_checks[name];
     if (check && check.flagged) {
       li.classList.add('flagged');
@@ -155,18 +173,22 @@ function rebuildLandmarkList() {
     ol.appendChild(li);
   }
   const missing = state.names.filter((n) => !state.landmarks[n]);
+  const low = state.names.filter(lowConfidence).length;
   $('landmark-hint').textContent = !state.scanId ? 'Open a scan first.'
-    : missing.length ? `Click a name, then click the scan to place it (${missing.length} to place). Drag a placed landmark to move it.`
-    : 'All 12 placed. Drag one to move it, then Fit.';
+    : missing.length ? `Suggest places all 12; or click a name, then click the scan to place it (${missing.length} to place). Drag a placed landmark to move it.`
+    : low ? `All 12 placed; ${low} suggested with low confidence (orange): check them, drag to correct, then Fit.`
+    : 'All 12 placed. Check them (drag one to move it), then Fit.';
   updateButtons();
 }
 
 function updateButtons() {
   const placed = Object.keys(state.landmarks).length;
-  $('fit').disabled = !state.scanId || state.fitRunning || placed < 3;
+  $('fit').disabled = !state.scanId || !!state.job || placed < 3;
   $('fit').textContent = state.result && state.result.usable ? 'Re-fit' : 'Fit';
-  $('cancel').disabled = !state.fitRunning;
-  $('export').disabled = !state.result || state.fitRunning;
+  $('cancel').disabled = state.job !== 'fit';
+  $('suggest').disabled = !state.scanId || !!state.job;
+  $('cancel-suggest').disabled = state.job !== 'suggest';
+  $('export').disabled = !state.result || !!state.job;
 }
 
 function selectNextUnplaced() {
@@ -208,7 +230,8 @@ async function openScan(path) {
   groups.scan.add(scanMesh);
   scanBox = g.boundingBox.clone();
   frame = data.body_frame;
-  Object.assign(state, { scanId: data.id, scanName: data.name, names: data.landmark_names, landmarks: {}, result: null });
+  Object.assign(state, { scanId: data.id, scanName: data.name, names: data.landmark_names, landmarks: {}, result: null,
+    suggested: {} });
   selectNextUnplaced();
   groups.model.clear(); groups.drawings.clear();
   $('scan-info').textContent = `${data.name}: ${nv} points, ${nf} triangles, ${data.units}` +
@@ -262,6 +285,7 @@ canvas.addEventListener('pointermove', (ev) => {
   const p = hitScan(ev);
   if (p) {
     state.landmarks[drag.name] = [p.x, p.y, p.z];
+    delete state.suggested[drag.name];  // moved by the user: checked
     drag.moved = true;
     rebuildLandmarks();
   }
@@ -280,6 +304,7 @@ canvas.addEventListener('pointerup', (ev) => {
     if (p) {
       if (state.landmarks[state.selected]) state.moved = true;
       state.landmarks[state.selected] = [p.x, p.y, p.z];
+      delete state.suggested[state.selected];
       selectNextUnplaced();
       rebuildLandmarks();
     }
@@ -291,38 +316,67 @@ function landmarkList() {
   return Object.entries(state.landmarks).map(([name, position]) => ({ name, position }));
 }
 
+// Follows the scan's running job (fit or suggest) until it ends; returns its final status.
+async function watchJob(onProgress) {
+  for (;;) {
+    await new Promise((r) => setTimeout(r, 150));
+    const s = await api('GET', `/api/scans/${state.scanId}/fit`);
+    if (s.status !== 200) { showMessage(s.data.error); return null; }
+    if (s.data.state !== 'running') return s.data;
+    onProgress(s.data);
+  }
+}
+
 async function fit() {
   const warm = !!(state.result && state.result.usable);
   const { status, data } = await api('POST', `/api/scans/${state.scanId}/fit`, { landmarks: landmarkList(), warm });
   if (status !== 202) return showMessage(data.error);
   showMessage('');
-  state.fitRunning = true;
+  state.job = 'fit';
   state.moved = false;
   updateButtons();
   $('progress').textContent = warm ? 'Re-fitting from the previous fit…' : 'Fitting…';
-  for (;;) {
-    await new Promise((r) => setTimeout(r, 150));
-    const s = await api('GET', `/api/scans/${state.scanId}/fit`);
-    if (s.status !== 200) { showMessage(s.data.error); break; }
-    const st = s.data;
-    if (st.state === 'running') {
-      $('progress').textContent = `Fitting: stage ${st.stage || '…'}, iteration ${st.iterations}`;
-      continue;
-    }
-    state.fitRunning = false;
-    if (st.state === 'done') {
-      const r = st.result;
-      $('progress').textContent = `${r.warm ? 'Re-fit' : 'Fit'} #${r.generation} done in ${(r.server_ms / 1000).toFixed(2)} s` +
-        (r.warm ? '' : '. To correct a landmark: drag it, then Re-fit.');
-      showResult(r);
-      refreshMapSources();
-    } else {
-      $('progress').textContent = st.message;
-      if (st.state === 'failed') showMessage(st.message);
-    }
-    break;
+  const st = await watchJob((p) => { $('progress').textContent = `Fitting: stage ${p.stage || '…'}, iteration ${p.iterations}`; });
+  state.job = null;
+  if (st && st.state === 'done') {
+    const r = st.result;
+    $('progress').textContent = `${r.warm ? 'Re-fit' : 'Fit'} #${r.generation} done in ${(r.server_ms / 1000).toFixed(2)} s` +
+      (r.warm ? '' : '. To correct a landmark: drag it, then Re-fit.');
+    showResult(r);
+    refreshMapSources();
+  } else if (st) {
+    $('progress').textContent = st.message;
+    if (st.state === 'failed') showMessage(st.message);
   }
   updateButtons();
+}
+
+// "Suggest": the server finds the 12 landmarks on the scan (a landmark-free fit); they replace
+// the placed ones, each with its confidence in the list, and stay editable.
+async function suggest() {
+  const { status, data } = await api('POST', `/api/scans/${state.scanId}/suggest`);
+  if (status !== 202) return showMessage(data.error);
+  state.job = 'suggest';
+  updateButtons();
+  showMessage('Finding the landmarks on the scan…', true);
+  const st = await watchJob((p) => showMessage(`Finding the landmarks: stage ${p.stage || '…'}, iteration ${p.iterations}`, true));
+  state.job = null;
+  if (st && st.state === 'done') {
+    const sug = st.suggestion;
+    state.landmarks = {};
+    state.suggested = {};
+    for (const l of sug.landmarks) {
+      state.landmarks[l.name] = l.position;
+      state.suggested[l.name] = { confidence: l.confidence, method: l.method };
+    }
+    state.moved = true;
+    const low = sug.landmarks.filter((l) => l.confidence < LOW_CONFIDENCE).length;
+    showMessage(`${sug.landmarks.length} landmarks suggested in ${(sug.server_ms / 1000).toFixed(2)} s` +
+      (low ? `; ${low} of low confidence (orange): check them` : '') + '. Check each one (drag to correct), then Fit.', true);
+  } else if (st) {
+    showMessage(st.message, st.state === 'cancelled');
+  }
+  rebuildLandmarks();
 }
 
 // Viridis-like 5-stop ramp (matches the CSS colour bar).
@@ -462,7 +516,7 @@ async function mapFrom() {
 async function importLandmarks() {
   const { status, data } = await api('POST', `/api/scans/${state.scanId}/landmarks/import`, { path: $('mrk-path').value });
   if (status !== 200) return showMessage(data.error);
-  for (const l of data.landmarks) state.landmarks[l.name] = l.position;
+  for (const l of data.landmarks) { state.landmarks[l.name] = l.position; delete state.suggested[l.name]; }
   selectNextUnplaced();
   showMessage(data.warnings.length ? data.warnings.join('; ') : '');
   rebuildLandmarks();
@@ -510,6 +564,8 @@ $('scan-path').addEventListener('keydown', (e) => { if (e.key === 'Enter') openS
 $('upload').onchange = (e) => e.target.files[0] && upload(e.target.files[0]);
 $('fit').onclick = fit;
 $('cancel').onclick = () => api('POST', `/api/scans/${state.scanId}/cancel`);
+$('suggest').onclick = suggest;
+$('cancel-suggest').onclick = () => api('POST', `/api/scans/${state.scanId}/cancel`);
 $('import-mrk').onclick = importLandmarks;
 $('export-mrk').onclick = saveLandmarks;
 $('export').onclick = exportResult;
@@ -528,8 +584,8 @@ window.breastfitTest = {
     const r = canvas.getBoundingClientRect();
     return { x: r.left + (v.x + 1) / 2 * r.width, y: r.top + (1 - v.y) / 2 * r.height };
   },
-  state: () => ({ scanId: state.scanId, landmarks: state.landmarks, selected: state.selected,
-    fitRunning: state.fitRunning, result: state.result && { generation: state.result.generation, warm: state.result.warm,
+  state: () => ({ scanId: state.scanId, landmarks: state.landmarks, selected: state.selected, suggested: state.suggested,
+    job: state.job, fitRunning: state.job === 'fit', result: state.result && { generation: state.result.generation, warm: state.result.warm,
       usable: state.result.usable, server_ms: state.result.server_ms, drawings: state.result.drawings.map((d) => ({ name: d.name, colour: d.colour })) } }),
   setView,
 };

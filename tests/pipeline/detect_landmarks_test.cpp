@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include "breastfit/core/errors.h"
 #include "breastfit/synth/synth_case.h"
 #include "support/default_template.h"
 
@@ -39,6 +40,33 @@ TEST(DetectLandmarks, FindsEveryLandmarkOnTheScanNearTheTruth) {
   ASSERT_GT(n, 0);
   EXPECT_LT(sum / n, 30.0);
   EXPECT_EQ(to_markups(d.landmarks).points.size(), d.landmarks.size());
+}
+
+// On a prepared scan (the workstation's open scan): the same landmarks as from the scan itself,
+// every iteration seen, and an aborted fit is an error, not landmarks.
+TEST(DetectLandmarks, OnAPreparedScanTheSameAndAbortable) {
+  synth::SynthOptions o;
+  o.seed = 4;
+  const synth::SynthCase c = synth::make_case(*test::default_template(), o);
+  RegisterRequest req;
+  req.scan = c.scan;
+  req.model = test::default_template();
+  const DetectedLandmarks direct = detect_landmarks(req);
+  PreparedTarget target = prepare_target(c.scan, "scan", std::nullopt, req.options);
+  int iterations = 0;
+  const DetectedLandmarks prepared = detect_landmarks(req, target, [&](const fit::IterationRecord&) {
+    ++iterations;
+    return fit::CallbackResult::Continue;
+  });
+  EXPECT_GT(iterations, 0);
+  ASSERT_EQ(prepared.landmarks.size(), direct.landmarks.size());
+  for (size_t k = 0; k < direct.landmarks.size(); ++k) {
+    EXPECT_EQ(prepared.landmarks[k].name, direct.landmarks[k].name);
+    EXPECT_LT((prepared.landmarks[k].position_mm - direct.landmarks[k].position_mm).norm(), 1e-6) << direct.landmarks[k].name;
+    EXPECT_NEAR(prepared.landmarks[k].confidence, direct.landmarks[k].confidence, 1e-9);
+  }
+  EXPECT_THROW(detect_landmarks(req, target, [](const fit::IterationRecord&) { return fit::CallbackResult::Abort; }),
+               InvalidInput);
 }
 
 }  // namespace

@@ -72,6 +72,52 @@ TEST(ScanSession, OneFitAtATimeAndCancel) {
   EXPECT_LT(st.iterations, 5 * 400);
 }
 
+TEST(ScanSession, SuggestsTheLandmarksOnTheOpenScan) {
+  ScanSession s("1", the_case().scan, "scan.ply", test::default_template());
+  ASSERT_TRUE(s.start_suggest());
+  EXPECT_FALSE(s.start_fit(the_case().landmarks, false));  // one job at a time
+  EXPECT_FALSE(s.start_suggest());
+  EXPECT_EQ(s.status().job, "suggest");
+  s.wait();
+  const FitStatus st = s.status();
+  ASSERT_EQ(st.state, FitState::Done) << st.message;
+  ASSERT_NE(st.suggestion, nullptr);
+  EXPECT_EQ(st.outcome, nullptr);  // a suggestion is not a fit
+  ASSERT_EQ(st.suggestion->landmarks.size(), s.model().landmarks.size());
+  EXPECT_GT(st.iterations, 0);
+  EXPECT_GT(st.suggestion->server_ms, 0);
+  for (const auto& d : st.suggestion->landmarks) {
+    EXPECT_GE(d.confidence, 0.0);
+    EXPECT_LE(d.confidence, 1.0);
+    EXPECT_FALSE(d.method.empty());
+  }
+  // The suggested landmarks fit like the placed ones.
+  LandmarkSet suggested;
+  suggested.declared_units = "mm";
+  for (const auto& d : st.suggestion->landmarks) suggested.points.push_back({d.name, d.position_mm});
+  EXPECT_TRUE(s.run_fit(suggested, false)->result.usable());
+}
+
+TEST(ScanSession, ASuggestionCanBeCancelled) {
+  ScanSession s("1", the_case().scan, "scan.ply", test::default_template());
+  ASSERT_TRUE(s.start_suggest());
+  s.cancel();
+  s.wait();
+  const FitStatus st = s.status();
+  EXPECT_EQ(st.state, FitState::Cancelled) << st.message;
+  EXPECT_EQ(st.suggestion, nullptr);
+  EXPECT_NE(st.message.find("no landmarks"), std::string::npos) << st.message;
+}
+
+TEST(ScanSession, WaitStatusReturnsOnAChange) {
+  ScanSession s("1", the_case().scan, "scan.ply", test::default_template());
+  const uint64_t seen = s.status().version;
+  EXPECT_EQ(s.wait_status(seen, std::chrono::milliseconds(1)).version, seen);  // nothing changed: the timeout
+  ASSERT_TRUE(s.start_suggest());
+  EXPECT_GT(s.wait_status(seen, std::chrono::seconds(60)).version, seen);
+  s.wait();
+}
+
 TEST(ScanSession, BadInputsAreReported) {
   EXPECT_THROW(ScanSession("1", test::temp_dir() / "none.ply", "none.ply", test::default_template()), IoError);
   ScanSession s("1", the_case().scan, "scan.ply", test::default_template());

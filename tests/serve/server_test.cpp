@@ -219,6 +219,9 @@ TEST(Server, OneFitPerScanAtATimeAndCancel) {
   const auto refused = b.Post(fit.c_str(), json{{"landmarks", landmarks_json()}}.dump(), "application/json");
   EXPECT_EQ(refused->status, 409);
   EXPECT_NE(body(refused)["error"].get<std::string>().find("already running"), std::string::npos);
+  const auto no_suggest = b.Post(("/api/scans/" + id + "/suggest").c_str(), "", "application/json");
+  EXPECT_EQ(no_suggest->status, 409);
+  EXPECT_NE(body(no_suggest)["error"].get<std::string>().find("a fit of this scan is already running"), std::string::npos);
   // Another scan is not blocked.
   const std::string other = open_scan(b, "cases/a/scan.ply");
   EXPECT_NE(other, id);
@@ -329,6 +332,44 @@ TEST(Server, MapsTheDrawingsOfAnotherFittedScan) {
     EXPECT_LT(worst, 5.0) << curves[k]["name"];
     EXPECT_GT(curves[k]["confidence"]["high"].get<int>(), 0) << curves[k]["name"];
   }
+}
+
+// "Suggest": the landmarks found on the open scan, each near the synthetic truth, with a
+// confidence; a fit asked meanwhile is refused; the suggested landmarks then fit.
+TEST(Server, SuggestsTheLandmarks) {
+  RunningServer s({});
+  auto c = s.client();
+  const std::string id = open_scan(c, "cases/a/scan.ply");
+  const auto started = c.Post(("/api/scans/" + id + "/suggest").c_str(), "", "application/json");
+  ASSERT_EQ(started->status, 202) << started->body;
+  const auto busy = c.Post(("/api/scans/" + id + "/fit").c_str(), json{{"landmarks", landmarks_json()}}.dump(), "application/json");
+  EXPECT_EQ(busy->status, 409);
+  EXPECT_NE(body(busy)["error"].get<std::string>().find("landmark suggestion"), std::string::npos) << busy->body;
+  const json end = wait_fit(c, id);
+  ASSERT_EQ(end["state"], "done") << end.dump();
+  EXPECT_EQ(end["job"], "suggest");
+  EXPECT_TRUE(end["result"].is_null());
+  const json& suggested = end["suggestion"]["landmarks"];
+  ASSERT_EQ(suggested.size(), 12u);
+  double sum = 0;
+  for (const auto& l : suggested) {
+    const auto truth = std::find_if(fixture().landmarks_mm.begin(), fixture().landmarks_mm.end(),
+                                    [&](const NamedPoint& p) { return p.name == l["name"]; });
+    ASSERT_NE(truth, fixture().landmarks_mm.end()) << l["name"];
+    const Vec3 p(l["position"][0].get<double>(), l["position"][1].get<double>(), l["position"][2].get<double>());
+    const double d = (p - truth->position).norm();
+    EXPECT_LT(d, 70.0) << l["name"];  // the breast folds and tips are the hardest
+    sum += d;
+    EXPECT_GE(l["confidence"].get<double>(), 0.0);
+    EXPECT_LE(l["confidence"].get<double>(), 1.0);
+  }
+  EXPECT_LT(sum / 12, 20.0);
+  ASSERT_EQ(c.Post(("/api/scans/" + id + "/fit").c_str(), json{{"landmarks", suggested}}.dump(), "application/json")->status, 202);
+  const json fitted = wait_fit(c, id);
+  ASSERT_EQ(fitted["state"], "done") << fitted.dump();
+  EXPECT_EQ(fitted["job"], "fit");
+  EXPECT_TRUE(fitted["result"]["usable"].get<bool>());
+  EXPECT_EQ(fitted["suggestion"]["landmarks"].size(), 12u);  // still there
 }
 
 TEST(Server, LandmarksImportAndSave) {

@@ -43,6 +43,29 @@ TEST(SessionJson, ScanMeshBinaryLayout) {
   EXPECT_EQ(c, 2u);
 }
 
+TEST(SessionJson, SuggestionAndStatus) {
+  auto o = std::make_shared<SuggestOutcome>();
+  o->landmarks.push_back({"nipple_R", Vec3(1, 2, 3), 0.25, "breast tip on the scan"});
+  o->server_ms = 400;
+  const auto j = to_json(*o);
+  ASSERT_EQ(j["landmarks"].size(), 1u);
+  EXPECT_EQ(j["landmarks"][0]["name"], "nipple_R");
+  EXPECT_EQ(j["landmarks"][0]["position"][2], 3.0);
+  EXPECT_EQ(j["landmarks"][0]["confidence"], 0.25);
+  EXPECT_EQ(j["landmarks"][0]["method"], "breast tip on the scan");
+  // Placeable as landmarks.
+  EXPECT_EQ(landmarks_from_json(j["landmarks"]).points[0].position, Vec3(1, 2, 3));
+  FitStatus st;
+  st.job = "suggest";
+  st.suggestion = o;
+  model::RiggedModel none;
+  const auto s = to_json(st, none);
+  EXPECT_EQ(s["job"], "suggest");
+  EXPECT_EQ(s["suggestion"]["server_ms"], 400.0);
+  EXPECT_TRUE(s["result"].is_null());
+  EXPECT_FALSE(to_json(st, none, false).contains("suggestion"));
+}
+
 TEST(SessionJson, BodyFrameAxes) {
   mesh::BodyFrame f;
   f.body_to_world.block<3, 1>(0, 3) = Vec3(1, 2, 3);

@@ -1,5 +1,6 @@
 // The workstation in a real browser (Debian's chromium, headless, software WebGL), driven by
-// playwright-core: a synthetic case is opened, the 12 landmarks are placed by clicking the canvas
+// playwright-core: a synthetic case is opened, its landmarks suggested by the server (each near the
+// truth) and fitted; then the 12 landmarks are placed by clicking the canvas
 // where the true landmarks are on screen, the scan is fitted, the drawings are looked for in the
 // canvas (their colours), one landmark is dragged and the scan re-fitted (warm start), the outputs
 // are exported and read back with `breastfit inspect`; a supine scan of the same subject is opened,
@@ -58,6 +59,29 @@ try {
   await page.waitForFunction(() => window.breastfitTest && window.breastfitTest.state().scanId, null, { timeout: 60000 });
   await page.waitForTimeout(300);
   await page.screenshot({ path: path.join(shots, 'workstation_open.png') });
+
+  // Suggest: the 12 landmarks found by the server, each near the truth, with its confidence in
+  // the list; then a fit with them. The scan is opened again afterwards (landmarks cleared) for
+  // the placement by hand.
+  await page.click('#suggest');
+  await page.waitForFunction(() => { const s = window.breastfitTest.state(); return !s.job && Object.keys(s.suggested).length > 0; },
+    null, { timeout: 120000 });
+  const suggested = await page.evaluate(() => window.breastfitTest.state());
+  check(Object.keys(suggested.landmarks).length === 12, 'Suggest filled the 12 landmarks');
+  for (const [name, p] of Object.entries(truth)) {
+    const q = suggested.landmarks[name];
+    const d = q ? Math.hypot(q[0] - p[0], q[1] - p[1], q[2] - p[2]) : Infinity;
+    check(d < 70, `suggested ${name} ${d.toFixed(1)} mm from the truth (confidence ${(suggested.suggested[name] || {}).confidence})`);
+  }
+  const shown = await page.$$eval('#landmarks li .confidence', (els) => els.map((e) => e.textContent));
+  check(shown.length === 12 && shown.every((t) => /\d+ %/.test(t)), `the list shows each suggested landmark's confidence (${shown.join(',')})`);
+  await page.screenshot({ path: path.join(shots, 'workstation_suggest.png') });
+  await page.click('#fit');
+  await page.waitForFunction(() => { const s = window.breastfitTest.state(); return s.result && !s.job; }, null, { timeout: 180000 });
+  check((await page.evaluate(() => window.breastfitTest.state())).result.usable, 'the fit with the suggested landmarks is usable');
+  await page.click('#open-scan');
+  await page.waitForFunction(() => { const s = window.breastfitTest.state(); return !s.result && Object.keys(s.landmarks).length === 0; },
+    null, { timeout: 60000 });
 
   // Place the 12 landmarks: select each name, click where its true position is on screen; when
   // another part of the body hides it in one view, try the next.
@@ -128,8 +152,8 @@ try {
   const moved = Math.hypot(after[0] - before[0], after[1] - before[1], after[2] - before[2]);
   check(moved > 2, `nipple_R dragged by ${moved.toFixed(1)} mm`);
   await page.click('#fit');
-  await page.waitForFunction(() => { const s = window.breastfitTest.state(); return s.result && s.result.generation === 2 && !s.fitRunning; },
-    null, { timeout: 120000 });
+  await page.waitForFunction((g) => { const s = window.breastfitTest.state(); return s.result && s.result.generation === g && !s.fitRunning; },
+    st.result.generation + 1, { timeout: 120000 });
   st = await page.evaluate(() => window.breastfitTest.state());
   check(st.result.warm && st.result.usable, `the re-fit is warm-started and usable (${st.result.server_ms.toFixed(0)} ms in the server)`);
   await page.check('#show-distance');

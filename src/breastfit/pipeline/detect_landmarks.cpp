@@ -18,16 +18,13 @@ double orientation_confidence(const fit::OrientationSummary& o) {
   return std::clamp(o.margin / 0.5, 0.0, 1.0);
 }
 
-}  // namespace
-
-DetectedLandmarks detect_landmarks(RegisterRequest request) {
-  request.landmarks.reset();
-  request.options.use_landmarks = false;
+// The landmark-free fit's landmarks snapped onto the scan (`scan`: its closest-point index).
+DetectedLandmarks landmarks_on_scan(const std::string& scan_name, RegisterResult registration,
+                                    const fit::ScanTarget& scan) {
   DetectedLandmarks out;
-  out.registration = register_scan(request);
+  out.registration = std::move(registration);
   const RegisterResult& r = out.registration;
-  if (!r.usable()) throw InvalidInput(request.scan_name + ": " + r.fit.summary.verdict.reason);
-  const fit::ScanTarget scan(r.scan.mesh_mm, 0);
+  if (!r.usable()) throw InvalidInput(scan_name + ": " + r.fit.summary.verdict.reason);
   const double oriented = orientation_confidence(r.fit.summary.orientation);
   for (const auto& p : r.model_landmarks_mm.points) {
     DetectedLandmark d;
@@ -45,6 +42,28 @@ DetectedLandmarks detect_landmarks(RegisterRequest request) {
     out.landmarks.push_back(d);
   }
   return out;
+}
+
+void without_landmarks(RegisterRequest& request) {
+  request.landmarks.reset();
+  request.options.use_landmarks = false;
+}
+
+}  // namespace
+
+DetectedLandmarks detect_landmarks(RegisterRequest request) {
+  without_landmarks(request);
+  RegisterResult r = register_scan(request);
+  if (!r.usable()) throw InvalidInput(request.scan_name + ": " + r.fit.summary.verdict.reason);
+  const fit::ScanTarget scan(r.scan.mesh_mm, 0);
+  return landmarks_on_scan(request.scan_name, std::move(r), scan);
+}
+
+DetectedLandmarks detect_landmarks(RegisterRequest request, PreparedTarget& target,
+                                   const fit::IterationCallback& on_iteration) {
+  without_landmarks(request);
+  RegisterResult r = register_prepared(request, target, on_iteration);
+  return landmarks_on_scan(target.scan_name, std::move(r), *target.target);
 }
 
 Markups to_markups(const std::vector<DetectedLandmark>& landmarks) {

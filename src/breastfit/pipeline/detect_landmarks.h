@@ -30,6 +30,13 @@ struct DetectedLandmarks {
 /// usable (its verdict).
 DetectedLandmarks detect_landmarks(RegisterRequest request);
 
+/// detect_landmarks on a scan prepared once (the workstation's open scan: its index is not
+/// rebuilt; `request.scan` and `request.units` are not used). `on_iteration` sees every solver
+/// iteration and may abort (the fit is then not usable: InvalidInput). One fit per target at a
+/// time (register_prepared).
+DetectedLandmarks detect_landmarks(RegisterRequest request, PreparedTarget& target,
+                                   const fit::IterationCallback& on_iteration = {});
+
 /// The detected landmarks as markups (mm), for io::write_markups.
 Markups to_markups(const std::vector<DetectedLandmark>& landmarks);
 

@@ -62,17 +62,9 @@ std::shared_ptr<const FitOutcome> ScanSession::run_fit(const LandmarkSet& landma
   }
   auto out = std::make_shared<FitOutcome>();
   out->warm = req.warm_start.has_value();
-  const auto on_iteration = [this](const fit::IterationRecord& rec) {
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      status_.stage = rec.stage;
-      ++status_.iterations;
-    }
-    return cancel_ ? fit::CallbackResult::Abort : fit::CallbackResult::Continue;
-  };
   {
     std::lock_guard<std::mutex> use(target_mutex_);
-    out->result = pipeline::register_prepared(req, target_, on_iteration);
+    out->result = pipeline::register_prepared(req, target_, progress());
     const fit::ScanTarget& scan = *target_.target;
     out->distances_mm.reserve(out->result.fit.vertices.rows());
     for (Eigen::Index i = 0; i < out->result.fit.vertices.rows(); ++i)
@@ -86,34 +78,93 @@ std::shared_ptr<const FitOutcome> ScanSession::run_fit(const LandmarkSet& landma
   return out;
 }
 
-bool ScanSession::start_fit(LandmarkSet landmarks_mm, bool warm) {
-  std::lock_guard<std::mutex> lock(mutex_);
-  if (status_.state == FitState::Running) return false;
-  if (worker_.joinable()) worker_.join();  // the previous, finished worker
-  cancel_ = false;
-  status_.state = FitState::Running;
-  status_.stage.clear();
-  status_.iterations = 0;
-  status_.message.clear();
-  worker_ = std::thread([this, landmarks = std::move(landmarks_mm), warm] {
-    try {
-      auto outcome = run_fit(landmarks, warm);
-      if (cancel_ || outcome->result.fit.summary.termination == fit::Termination::Aborted)
-        finish(FitState::Cancelled, "cancelled: the fit was stopped; the previous result is kept", nullptr);
-      else
-        finish(FitState::Done, outcome->result.fit.summary.message, outcome);
-    } catch (const std::exception& e) {
-      finish(FitState::Failed, e.what(), nullptr);
+fit::IterationCallback ScanSession::progress() {
+  return [this](const fit::IterationRecord& rec) {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      status_.stage = rec.stage;
+      ++status_.iterations;
+      ++status_.version;
     }
+    changed_.notify_all();
+    return cancel_ ? fit::CallbackResult::Abort : fit::CallbackResult::Continue;
+  };
+}
+
+std::shared_ptr<const SuggestOutcome> ScanSession::run_suggest() {
+  Timer timer;
+  const double cpu_start = thread_cpu_ms();
+  pipeline::RegisterRequest req;
+  req.scan_name = name_;
+  req.model = model_;
+  req.options = options_;
+  auto out = std::make_shared<SuggestOutcome>();
+  {
+    std::lock_guard<std::mutex> use(target_mutex_);
+    pipeline::DetectedLandmarks d = pipeline::detect_landmarks(req, target_, progress());
+    out->landmarks = std::move(d.landmarks);
+    out->warnings = std::move(d.registration.warnings);
+  }
+  out->server_ms = 1000 * timer.seconds();
+  out->server_cpu_ms = thread_cpu_ms() - cpu_start;
+  return out;
+}
+
+bool ScanSession::start_fit(LandmarkSet landmarks_mm, bool warm) {
+  return start_job("fit", [this, landmarks = std::move(landmarks_mm), warm] {
+    auto outcome = run_fit(landmarks, warm);
+    return JobEnd{outcome->result.fit.summary.message, outcome, nullptr};
   });
+}
+
+bool ScanSession::start_suggest() {
+  return start_job("suggest", [this] {
+    auto outcome = run_suggest();
+    return JobEnd{std::to_string(outcome->landmarks.size()) + " landmarks suggested", nullptr, outcome};
+  });
+}
+
+bool ScanSession::start_job(std::string job, std::function<JobEnd()> work) {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (status_.state == FitState::Running) return false;
+    if (worker_.joinable()) worker_.join();  // the previous, finished worker
+    cancel_ = false;
+    status_.state = FitState::Running;
+    status_.job = std::move(job);
+    status_.stage.clear();
+    status_.iterations = 0;
+    status_.message.clear();
+    ++status_.version;
+    worker_ = std::thread([this, work = std::move(work), fit = status_.job == "fit"] {
+      // A cancelled fit ends Aborted, a cancelled suggestion throws: either way cancel_ tells.
+      const std::string cancelled = fit ? "cancelled: the fit was stopped; the previous result is kept"
+                                                         : "cancelled: no landmarks were suggested";
+      try {
+        JobEnd end = work();
+        if (cancel_)
+          finish(FitState::Cancelled, {cancelled, nullptr, nullptr});
+        else
+          finish(FitState::Done, std::move(end));
+      } catch (const std::exception& e) {
+        finish(cancel_ ? FitState::Cancelled : FitState::Failed, {cancel_ ? cancelled : e.what(), nullptr, nullptr});
+      }
+    });
+  }
+  changed_.notify_all();
   return true;
 }
 
-void ScanSession::finish(FitState state, std::string message, std::shared_ptr<const FitOutcome> outcome) {
-  std::lock_guard<std::mutex> lock(mutex_);
-  status_.state = state;
-  status_.message = std::move(message);
-  if (outcome) status_.outcome = std::move(outcome);
+void ScanSession::finish(FitState state, JobEnd end) {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    status_.state = state;
+    status_.message = std::move(end.message);
+    if (end.fit) status_.outcome = std::move(end.fit);
+    if (end.suggestion) status_.suggestion = std::move(end.suggestion);
+    ++status_.version;
+  }
+  changed_.notify_all();
 }
 
 bool ScanSession::with_target(const std::function<void(const fit::ScanTarget&)>& f) {
@@ -140,6 +191,12 @@ void ScanSession::wait() {
 
 FitStatus ScanSession::status() const {
   std::lock_guard<std::mutex> lock(mutex_);
+  return status_;
+}
+
+FitStatus ScanSession::wait_status(uint64_t seen, std::chrono::milliseconds timeout) const {
+  std::unique_lock<std::mutex> lock(mutex_);
+  changed_.wait_for(lock, timeout, [&] { return status_.version != seen; });
   return status_;
 }
 

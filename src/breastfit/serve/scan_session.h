@@ -1,8 +1,13 @@
 #pragma once
 /// \file One scan open in the workstation: read and indexed once, then fitted as often as the
-/// user asks — one fit at a time (a second request is refused, not queued), on a worker thread,
-/// with its progress readable at any time and a cancel that ends it after the current iteration.
+/// user asks, or its landmarks suggested (pipeline::detect_landmarks) — one job at a time (a
+/// second request is refused, not queued), on a worker thread, with its progress readable at any
+/// time (or waited for: the page's event stream) and a cancel that ends it after the current
+/// iteration.
 #include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <memory>
@@ -16,6 +21,7 @@
 #include "breastfit/mesh/body_frame.h"
 #include "breastfit/mesh/landmarks.h"
 #include "breastfit/model/rigged_model.h"
+#include "breastfit/pipeline/detect_landmarks.h"
 #include "breastfit/pipeline/register_scan.h"
 
 namespace breastfit::serve {
@@ -32,16 +38,28 @@ struct FitOutcome {
   int generation = 0;                ///< 1 for the session's first fit, then 2, 3, ...
 };
 
+/// Landmarks suggested on the scan (pipeline::detect_landmarks on the open scan), for the user to
+/// check and correct before a fit.
+struct SuggestOutcome {
+  std::vector<pipeline::DetectedLandmark> landmarks;  ///< the template's, in its order
+  std::vector<std::string> warnings;                  ///< the landmark-free fit's
+  double server_ms = 0;                               ///< wall time in the server
+  double server_cpu_ms = 0;                           ///< CPU time of the same work (its one thread)
+};
+
 enum class FitState { Idle, Running, Done, Failed, Cancelled };
 const char* to_string(FitState s);
 
-/// What the page polls.
+/// What the page watches: the running or last job (a fit or a landmark suggestion).
 struct FitStatus {
   FitState state = FitState::Idle;
+  std::string job = "fit";      ///< the running or last job: "fit" or "suggest"
   std::string stage;            ///< the running stage
   int iterations = 0;           ///< iterations so far (all stages)
   std::string message;          ///< the failure's or cancellation's reason, or the verdict
   std::shared_ptr<const FitOutcome> outcome;  ///< the last finished fit (may be older than state)
+  std::shared_ptr<const SuggestOutcome> suggestion;  ///< the last finished suggestion
+  uint64_t version = 0;         ///< grows with every change of the above
 };
 
 class ScanSession {
@@ -70,19 +88,37 @@ class ScanSession {
 
   /// Starts a fit with `landmarks_mm` (positions in mm, scan frame). `warm`: start from the last
   /// usable fit's parameters (pipeline::RegisterRequest::warm_start) when there is one.
-  /// Returns false (and starts nothing) while another fit of this scan runs.
+  /// Returns false (and starts nothing) while another job (fit or suggestion) of this scan runs.
   bool start_fit(LandmarkSet landmarks_mm, bool warm);
   /// Runs a fit on the calling thread (what start_fit's worker runs; benchmarks call it).
   /// \throws InvalidInput for bad landmarks
   std::shared_ptr<const FitOutcome> run_fit(const LandmarkSet& landmarks_mm, bool warm);
-  /// Asks a running fit to stop after its current iteration.
+  /// Starts suggesting the landmarks (a landmark-free fit, then the template's landmarks snapped
+  /// to the scan, each with a confidence). Returns false (and starts nothing) while another job
+  /// of this scan runs.
+  bool start_suggest();
+  /// Suggests the landmarks on the calling thread (what start_suggest's worker runs).
+  /// \throws InvalidInput when the landmark-free fit is not usable (or was cancelled)
+  std::shared_ptr<const SuggestOutcome> run_suggest();
+  /// Asks a running job to stop after its current iteration.
   void cancel();
-  /// Waits for a running fit to end.
+  /// Waits for a running job to end.
   void wait();
   FitStatus status() const;
+  /// The status once its version differs from `seen` (at once when it already does), or after
+  /// `timeout` whatever it is.
+  FitStatus wait_status(uint64_t seen, std::chrono::milliseconds timeout) const;
 
  private:
-  void finish(FitState state, std::string message, std::shared_ptr<const FitOutcome> outcome);
+  // What a finished job leaves: its message and outcome (one of the two, or none).
+  struct JobEnd {
+    std::string message;
+    std::shared_ptr<const FitOutcome> fit;
+    std::shared_ptr<const SuggestOutcome> suggestion;
+  };
+  bool start_job(std::string job, std::function<JobEnd()> work);
+  void finish(FitState state, JobEnd end);
+  fit::IterationCallback progress();  // counts iterations and answers a cancel
 
   std::string id_, name_;
   std::filesystem::path scan_path_;
@@ -92,6 +128,7 @@ class ScanSession {
   mesh::BodyFrame frame_;
 
   mutable std::mutex mutex_;
+  mutable std::condition_variable changed_;  // status_.version grew
   std::mutex target_mutex_;  // held while the index is used (a fit, with_target)
   FitStatus status_;
   std::optional<model::PoseParams> last_params_;  // of the last usable fit

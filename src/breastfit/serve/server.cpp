@@ -42,6 +42,12 @@ void send_error(httplib::Response& res, int status, const std::string& message) 
   send_json(res, status, {{"error", message}});
 }
 
+// 409 for a job request while another job of the scan runs.
+void send_busy(httplib::Response& res, const ScanSession& s) {
+  const std::string job = s.status().job == "suggest" ? "landmark suggestion" : "fit";
+  send_error(res, 409, "a " + job + " of this scan is already running (started from another window?): wait for it or cancel it");
+}
+
 std::string cookie_token(const httplib::Request& req) {
   const std::string cookies = req.get_header_value("Cookie");
   const std::string key = std::string(kCookie) + "=";
@@ -277,7 +283,17 @@ struct Server::Impl {
       LandmarkSet landmarks = landmarks_from_json(body["landmarks"]);
       const auto s = session(req);
       if (!s->start_fit(std::move(landmarks), bool_field(body, "warm")))
-        send_error(res, 409, "a fit of this scan is already running (started from another window?): wait for it or cancel it");
+        send_busy(res, *s);
+      else
+        send_json(res, 202, {{"started", true}});
+    }));
+
+    // "Suggest": the 12 landmarks found on the open scan (a landmark-free fit), each with a
+    // confidence; a job like a fit (one per scan at a time, progress, cancel).
+    http.Post(R"(/api/scans/(\d+)/suggest)", guarded([this](const httplib::Request& req, httplib::Response& res) {
+      const auto s = session(req);
+      if (!s->start_suggest())
+        send_busy(res, *s);
       else
         send_json(res, 202, {{"started", true}});
     }));

@@ -147,13 +147,25 @@ json mapped_drawings_json(const transfer::MapResult& mapped) {
   return {{"curves", curves}};
 }
 
-json to_json(const FitStatus& s, const model::RiggedModel& model) {
+json to_json(const SuggestOutcome& o) {
+  json landmarks = json::array();
+  for (const auto& d : o.landmarks)
+    landmarks.push_back(
+        {{"name", d.name}, {"position", vec(d.position_mm)}, {"confidence", d.confidence}, {"method", d.method}});
+  return {{"landmarks", landmarks}, {"warnings", o.warnings}, {"server_ms", o.server_ms}, {"server_cpu_ms", o.server_cpu_ms}};
+}
+
+json to_json(const FitStatus& s, const model::RiggedModel& model, bool with_outcomes) {
   json j;
+  j["job"] = s.job;
   j["state"] = to_string(s.state);
   j["stage"] = s.stage;
   j["iterations"] = s.iterations;
   j["message"] = s.message;
-  j["result"] = s.outcome ? to_json(*s.outcome, model) : json(nullptr);
+  if (with_outcomes) {
+    j["result"] = s.outcome ? to_json(*s.outcome, model) : json(nullptr);
+    j["suggestion"] = s.suggestion ? to_json(*s.suggestion) : json(nullptr);
+  }
   return j;
 }
 

@@ -16,8 +16,13 @@ namespace breastfit::serve {
 /// uint32 #F, float32 x y z per vertex, uint32 a b c per face.
 std::string scan_mesh_binary(const pipeline::PreparedScan& scan);
 
-/// The fit status: state, stage, iterations, message, and (when a fit has finished) the outcome.
-nlohmann::json to_json(const FitStatus& status, const model::RiggedModel& model);
+/// The job status: job ("fit" or "suggest"), state, stage, iterations, message, and (when a fit
+/// or a suggestion has finished) the outcome as "result" and "suggestion". `with_outcomes` false:
+/// without those two (the event stream's progress events).
+nlohmann::json to_json(const FitStatus& status, const model::RiggedModel& model, bool with_outcomes = true);
+
+/// Suggested landmarks: [{"name", "position", "confidence", "method"}], warnings and server time.
+nlohmann::json to_json(const SuggestOutcome& outcome);
 
 /// A finished fit: fitted surface and per-vertex distance to the scan, drawings with their
 /// report.html colours, placed and fitted landmarks, landmark checks, warnings, verdict, breast
