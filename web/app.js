@@ -538,6 +538,22 @@ async function saveLandmarks() {
   refreshFiles();
 }
 
+// The landmarks as a 3D Slicer .mrk.json, downloaded by the browser (made by the server's writer).
+async function downloadLandmarks() {
+  const name = $('mrk-path').value.split('/').pop() || 'landmarks.mrk.json';
+  const res = await fetch(`/api/scans/${state.scanId}/landmarks/download`, {
+    method: 'POST', headers: { 'Content-Type': 'application/json' }, body: JSON.stringify({ name, landmarks: landmarkList() }),
+  });
+  if (res.status !== 200) return showMessage((await res.json()).error);
+  const a = document.createElement('a');
+  a.href = URL.createObjectURL(await res.blob());
+  a.download = name;
+  document.body.appendChild(a);
+  a.click();
+  a.remove();
+  setTimeout(() => URL.revokeObjectURL(a.href), 5000);
+}
+
 async function exportResult() {
   const dir = $('export-dir').value;
   const res = await postConfirmingOverwrite(`/api/scans/${state.scanId}/export`, { dir }, 'the outputs in ' + dir);
@@ -568,6 +584,7 @@ $('suggest').onclick = suggest;
 $('cancel-suggest').onclick = () => api('POST', `/api/scans/${state.scanId}/cancel`);
 $('import-mrk').onclick = importLandmarks;
 $('export-mrk').onclick = saveLandmarks;
+$('download-mrk').onclick = downloadLandmarks;
 $('export').onclick = exportResult;
 $('map').onclick = mapFrom;
 $('show-model').onchange = buildModel;

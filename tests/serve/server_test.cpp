@@ -385,6 +385,23 @@ TEST(Server, LandmarksImportAndSave) {
   ASSERT_EQ(c.Post(save.c_str(), req.dump(), "application/json")->status, 200);
   EXPECT_EQ(io::read_markups(fixture().workspace / "placed" / "l.mrk.json").points.size(), 12u);
   EXPECT_EQ(c.Post(save.c_str(), req.dump(), "application/json")->status, 409);
+  // Download: the same file for the browser, nothing written; read back with the project's reader.
+  const auto down = c.Post(("/api/scans/" + id + "/landmarks/download").c_str(),
+                           json{{"name", "x/../mine.mrk.json"}, {"landmarks", body(imported)["landmarks"]}}.dump(),
+                           "application/json");
+  ASSERT_EQ(down->status, 200) << down->body;
+  EXPECT_EQ(down->get_header_value("Content-Disposition"), "attachment; filename=\"mine.mrk.json\"");
+  const Markups back = io::parse_markups(down->body, "the download").markups;
+  ASSERT_EQ(back.points.size(), 12u);
+  const json sent_all = body(imported)["landmarks"];
+  for (size_t k = 0; k < 12; ++k) {
+    const json& sent = sent_all[k];
+    EXPECT_EQ(back.points[k].name, sent["name"]);
+    for (int i = 0; i < 3; ++i) EXPECT_NEAR(back.points[k].position[i], sent["position"][i].get<double>(), 1e-6);
+  }
+  EXPECT_FALSE(fs::exists(fixture().workspace / "mine.mrk.json"));
+  EXPECT_EQ(c.Post(("/api/scans/" + id + "/landmarks/download").c_str(), json{{"landmarks", 3}}.dump(), "application/json")->status,
+            400);
   EXPECT_EQ(c.Post(save.c_str(), json{{"path", "cases/a/scan.ply"}, {"landmarks", json::array()}, {"overwrite", true}}.dump(),
                    "application/json")->status, 400);
 }

@@ -101,6 +101,18 @@ try {
   await page.evaluate(() => window.breastfitTest.setView('front'));
   await page.screenshot({ path: path.join(shots, 'workstation_landmarks.png') });
 
+  // Download the placed landmarks as a .mrk.json; `breastfit inspect` reads the same positions.
+  const [download] = await Promise.all([page.waitForEvent('download'), page.click('#download-mrk')]);
+  const downloaded = path.join(work, 'downloaded.mrk.json');
+  await download.saveAs(downloaded);
+  check(download.suggestedFilename() === 'scan.landmarks.mrk.json', `downloaded as ${download.suggestedFilename()}`);
+  const placed = (await page.evaluate(() => window.breastfitTest.state())).landmarks;
+  const read = JSON.parse(execFileSync(exe, ['inspect', downloaded, '--json']).toString());
+  check(read.points.length === 12 && read.missing_landmarks.length === 0 && read.points.every((p) => {
+    const q = placed[p.name];
+    return q && Math.hypot(p.position[0] - q[0], p.position[1] - q[1], p.position[2] - q[2]) < 1e-3;
+  }), 'breastfit inspect reads the downloaded landmarks at the placed positions');
+
   // Fit.
   await page.click('#fit');
   await page.waitForFunction(() => { const s = window.breastfitTest.state(); return s.result && !s.fitRunning; },

@@ -98,6 +98,20 @@ bool bool_field(const json& j, const char* key) {
   return j.is_object() && j.contains(key) && j[key].is_boolean() && j[key].get<bool>();
 }
 
+// The request's "landmarks" (mm) as markups.
+Markups landmark_markups(const json& body) {
+  Markups m;
+  m.points = landmarks_from_json(body.is_object() ? body.value("landmarks", json::array()) : json::array()).points;
+  return m;
+}
+
+// Landmark files are written in the scan's own units.
+io::MarkupsWriteOptions markups_options(const ScanSession& s) {
+  io::MarkupsWriteOptions w;
+  w.units = s.scan().units == mesh::Units::Metres ? "m" : "mm";
+  return w;
+}
+
 }  // namespace
 
 struct Server::Impl {
@@ -336,13 +350,21 @@ struct Server::Impl {
         send_json(res, 409, {{"error", "'" + rel + "' exists: overwrite it?"}, {"exists", true}});
         return;
       }
-      Markups m;
-      m.points = landmarks_from_json(body.value("landmarks", json::array())).points;
-      io::MarkupsWriteOptions w;
-      w.units = s->scan().units == mesh::Units::Metres ? "m" : "mm";  // the scan's own units
       fs::create_directories(p.parent_path(), ec);
-      io::write_markups(p, m, w);
+      io::write_markups(p, landmark_markups(body), markups_options(*s));
       send_json(res, 200, {{"path", workspace.relative(p)}});
+    }));
+
+    // The landmarks as a 3D Slicer .mrk.json for the browser to download (nothing is written).
+    http.Post(R"(/api/scans/(\d+)/landmarks/download)", guarded([this](const httplib::Request& req, httplib::Response& res) {
+      const json body = parse_body(req);
+      const auto s = session(req);
+      std::string name = body.is_object() && body.contains("name") && body["name"].is_string()
+                             ? fs::path(body["name"].get<std::string>()).filename().string()
+                             : std::string();
+      if (name.empty() || name.find('"') != std::string::npos) name = "landmarks.mrk.json";
+      res.set_content(io::format_markups(landmark_markups(body), markups_options(*s)), "application/json");
+      res.set_header("Content-Disposition", "attachment; filename=\"" + name + "\"");
     }));
 
     http.Post(R"(/api/scans/(\d+)/export)", guarded([this](const httplib::Request& req, httplib::Response& res) {
