@@ -1,5 +1,5 @@
 // The page of `breastfit serve`: open a scan of the workspace, place the 12 landmarks on it,
-// fit the template (progress polled, cancellable; a re-fit after moving a landmark is warm-started),
+// fit the template (progress streamed, cancellable; a re-fit after moving a landmark is warm-started),
 // look at the drawings, distances and warnings, export the output set. Coordinates are the
 // server's: millimetres, the scan's frame (any orientation: the views use the body frame the
 // server estimates).
@@ -316,15 +316,19 @@ function landmarkList() {
   return Object.entries(state.landmarks).map(([name, position]) => ({ name, position }));
 }
 
-// Follows the scan's running job (fit or suggest) until it ends; returns its final status.
-async function watchJob(onProgress) {
-  for (;;) {
-    await new Promise((r) => setTimeout(r, 150));
-    const s = await api('GET', `/api/scans/${state.scanId}/fit`);
-    if (s.status !== 200) { showMessage(s.data.error); return null; }
-    if (s.data.state !== 'running') return s.data;
-    onProgress(s.data);
-  }
+// Follows the scan's running job (fit or suggest) through the server's event stream until it
+// ends; resolves to its final status (null when the connection was lost).
+function watchJob(onProgress) {
+  return new Promise((resolve) => {
+    const events = new EventSource(`/api/scans/${state.scanId}/events`);
+    events.addEventListener('progress', (e) => onProgress(JSON.parse(e.data)));
+    events.addEventListener('end', (e) => { events.close(); resolve(JSON.parse(e.data)); });
+    events.onerror = () => {
+      events.close();
+      showMessage('The connection to breastfit serve was lost (is it still running?): reload the page.');
+      resolve(null);
+    };
+  });
 }
 
 async function fit() {

@@ -5,7 +5,9 @@
 #include <httplib.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
+#include <functional>
 #include <fstream>
 #include <thread>
 
@@ -99,6 +101,32 @@ json wait_fit(httplib::Client& c, const std::string& id) {
   }
   ADD_FAILURE() << "the fit did not end within 60 s";
   return {};
+}
+
+// A scan's event stream read to its end: each event's name and data.
+std::vector<std::pair<std::string, json>> read_events(httplib::Client& c, const std::string& id,
+                                                       const std::function<void(const std::string&)>& on_event = {}) {
+  std::string text;
+  std::vector<std::pair<std::string, json>> events;
+  const auto r = c.Get(("/api/scans/" + id + "/events").c_str(), [&](const char* data, size_t n) {
+    text.append(data, n);
+    for (size_t end; (end = text.find("\n\n")) != std::string::npos; text.erase(0, end + 2)) {
+      const std::string block = text.substr(0, end);
+      if (block.rfind("event: ", 0) != 0) continue;  // a comment (": waiting")
+      const size_t nl = block.find('\n');
+      const std::string name = block.substr(7, nl - 7);
+      EXPECT_EQ(block.compare(nl + 1, 6, "data: "), 0) << block;
+      events.emplace_back(name, json::parse(block.substr(nl + 7)));
+      if (on_event) on_event(name);
+    }
+    return true;
+  });
+  EXPECT_TRUE(r);
+  if (r) {
+    EXPECT_EQ(r->status, 200);
+    EXPECT_EQ(r->get_header_value("Content-Type"), "text/event-stream");
+  }
+  return events;
 }
 
 TEST(Server, EveryRequestNeedsTheToken) {
@@ -404,6 +432,69 @@ TEST(Server, LandmarksImportAndSave) {
             400);
   EXPECT_EQ(c.Post(save.c_str(), json{{"path", "cases/a/scan.ply"}, {"landmarks", json::array()}, {"overwrite", true}}.dump(),
                    "application/json")->status, 400);
+}
+
+// Progress and completion as Server-Sent Events: progress while the fit runs, then one end event
+// with the result, and the stream ends; with nothing running, the end event at once.
+TEST(Server, StreamsTheJobsProgressAndEnd) {
+  RunningServer s({});
+  auto c = s.client();
+  const std::string id = open_scan(c, "cases/a/scan.ply");
+  const auto idle = read_events(c, id);
+  ASSERT_EQ(idle.size(), 1u);
+  EXPECT_EQ(idle[0].first, "end");
+  EXPECT_EQ(idle[0].second["state"], "idle");
+  ASSERT_EQ(c.Post(("/api/scans/" + id + "/fit").c_str(), json{{"landmarks", landmarks_json()}}.dump(), "application/json")->status, 202);
+  const auto events = read_events(c, id);
+  ASSERT_GE(events.size(), 2u);
+  EXPECT_EQ(events.front().first, "progress");
+  EXPECT_EQ(events.front().second["job"], "fit");
+  EXPECT_FALSE(events.front().second.contains("result"));  // progress only
+  int last_iterations = 0;
+  for (size_t k = 0; k + 1 < events.size(); ++k) {
+    EXPECT_EQ(events[k].first, "progress");
+    EXPECT_GE(events[k].second["iterations"].get<int>(), last_iterations);
+    last_iterations = events[k].second["iterations"].get<int>();
+  }
+  EXPECT_EQ(events.back().first, "end");
+  EXPECT_EQ(events.back().second["state"], "done");
+  EXPECT_TRUE(events.back().second["result"]["usable"].get<bool>());
+  EXPECT_GE(events.back().second["iterations"].get<int>(), last_iterations);
+}
+
+// Cancel while the page listens: the stream ends with the cancellation. Stopping the server (as
+// Ctrl-C does) with a stream open returns at once.
+TEST(Server, CancelWhileStreamingAndStopWithAStreamOpen) {
+  ServerOptions o;
+  o.fit_options.solver.function_tolerance = 1e-300;
+  o.fit_options.solver.gradient_tolerance = 0;
+  o.fit_options.solver.parameter_tolerance = 0;
+  for (auto* st : o.fit_options.stages()) st->max_iterations = 400;
+  auto s = std::make_unique<RunningServer>(o);
+  auto c = s->client();
+  auto canceller = s->client();
+  const std::string id = open_scan(c, "cases/b/scan.ply");
+  const std::string fit = "/api/scans/" + id + "/fit";
+  ASSERT_EQ(c.Post(fit.c_str(), json{{"landmarks", landmarks_json()}}.dump(), "application/json")->status, 202);
+  bool cancelled = false;
+  const auto events = read_events(c, id, [&](const std::string&) {
+    if (!cancelled) cancelled = canceller.Post(("/api/scans/" + id + "/cancel").c_str(), "", "application/json")->status == 200;
+  });
+  ASSERT_FALSE(events.empty());
+  EXPECT_EQ(events.back().first, "end");
+  EXPECT_EQ(events.back().second["state"], "cancelled") << events.back().second.dump();
+
+  ASSERT_EQ(c.Post(fit.c_str(), json{{"landmarks", landmarks_json()}}.dump(), "application/json")->status, 202);
+  std::atomic<int> seen{0};
+  std::thread listener([&] {
+    auto l = s->client();  // the stream is cut by the stop: its result is an error
+    l.Get(("/api/scans/" + id + "/events").c_str(), [&](const char*, size_t) { ++seen; return true; });
+  });
+  while (seen == 0) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  const auto t0 = std::chrono::steady_clock::now();
+  s.reset();  // stop() + join, with the stream open
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 5.0);
+  listener.join();
 }
 
 TEST(Server, StopEndsRun) {

@@ -317,6 +317,36 @@ struct Server::Impl {
       send_json(res, 200, to_json(s->status(), s->model()));
     }));
 
+    // The scan's job (fit, re-fit or suggestion) as Server-Sent Events: "progress" events (job,
+    // stage, iterations; at most one per 50 ms) while it runs, then one "end" event with the
+    // whole status (result and suggestion included), and the stream ends. It also ends when the
+    // server stops (Ctrl-C never waits for a page) or the page goes away (a comment line every
+    // 100 ms without news finds out).
+    http.Get(R"(/api/scans/(\d+)/events)", guarded([this](const httplib::Request& req, httplib::Response& res) {
+      const auto s = session(req);
+      res.set_chunked_content_provider(
+          "text/event-stream",
+          [this, s, seen = ~uint64_t{0}, last = std::chrono::steady_clock::time_point{}](size_t, httplib::DataSink& sink) mutable {
+            using namespace std::chrono;
+            FitStatus st = s->wait_status(seen, milliseconds(100));
+            const bool news = st.version != seen;
+            if (news && st.state == FitState::Running && steady_clock::now() < last + milliseconds(50)) {
+              std::this_thread::sleep_until(last + milliseconds(50));  // progress at most every 50 ms
+              st = s->status();
+            }
+            if (stop_requested || !sink.is_writable()) return false;
+            const bool end = st.state != FitState::Running;
+            const std::string event = end    ? "event: end\ndata: " + to_json(st, *model).dump() + "\n\n"
+                                      : news ? "event: progress\ndata: " + to_json(st, *model, false).dump() + "\n\n"
+                                             : std::string(": waiting\n\n");
+            seen = st.version;
+            if (news) last = steady_clock::now();
+            if (!sink.write(event.data(), event.size())) return false;
+            if (end) sink.done();
+            return true;
+          });
+    }));
+
     http.Post(R"(/api/scans/(\d+)/cancel)", guarded([this](const httplib::Request& req, httplib::Response& res) {
       session(req)->cancel();
       send_json(res, 200, {{"cancelling", true}});

@@ -1,8 +1,8 @@
 #pragma once
 /// \file `breastfit serve`: the workstation's HTTP server (cpp-httplib). It serves the page
 /// (web/) and a JSON API over the workspace: list files, upload, open a scan (read and indexed
-/// once), fit it with placed landmarks (one fit per scan at a time, progress polled, cancellable,
-/// warm-started re-fits), import/export landmarks and export the registration's output set.
+/// once), suggest its landmarks, fit it with placed landmarks (one job per scan at a time,
+/// progress streamed as Server-Sent Events, cancellable, warm-started re-fits), import/export landmarks and export the registration's output set.
 /// Every request needs the token (query `token`, header `X-Breastfit-Token` or the cookie the
 /// page gets) and a Host/Origin of this server (request_guard.h); every path is confined to the
 /// workspace (workspace.h); nothing is overwritten unless the request says so.
