@@ -59,7 +59,9 @@ function animate() {
   requestAnimationFrame(animate);
 }
 
-let scanMesh = null;
+let scanMesh = null;      // the scan as shown and picked: shadedMesh or texturedMesh
+let shadedMesh = null;
+let texturedMesh = null;  // a textured OBJ's scan, or null
 let scanBox = null;
 
 // The standard views in the body frame (the fit's, else the scan's shape estimate): front looks at
@@ -226,8 +228,10 @@ async function openScan(path) {
   g.computeVertexNormals();
   g.computeBoundingBox();
   groups.scan.clear();
-  scanMesh = new THREE.Mesh(g, new THREE.MeshStandardMaterial({ color: 0xe8c4a8, roughness: 0.8, side: THREE.DoubleSide }));
+  scanMesh = shadedMesh = new THREE.Mesh(g, new THREE.MeshStandardMaterial({ color: 0xe8c4a8, roughness: 0.8, side: THREE.DoubleSide }));
+  texturedMesh = null;
   groups.scan.add(scanMesh);
+  $('texture-toggle').hidden = !data.textured;
   scanBox = g.boundingBox.clone();
   frame = data.body_frame;
   Object.assign(state, { scanId: data.id, scanName: data.name, names: data.landmark_names, landmarks: {}, result: null,
@@ -242,11 +246,47 @@ async function openScan(path) {
   groups.mapped.clear();
   $('map-result').textContent = '';
   $('export-result').textContent = '';
+  $('progress').textContent = '';
   refreshMapSources();
   rebuildLandmarks();
   resize();
   setView('front');
   showMessage('');
+  if (data.textured) await loadTexture(data.id, positions, faces);
+}
+
+// A textured OBJ: every face corner gets its own vertex (one vertex may have several texture
+// coordinates), drawn unlit (the photograph has its own light). Display only: picking uses the
+// same triangles, the fit the scan as read.
+async function loadTexture(id, positions, faces) {
+  const uv = await api('GET', `/api/scans/${id}/uv`);
+  if (uv.status !== 200) return showMessage(uv.data.error);
+  let map;
+  try {
+    map = await new THREE.TextureLoader().loadAsync(`/api/scans/${id}/texture`);
+  } catch (e) {
+    return showMessage(`${state.scanName}: the browser cannot read its texture image; shown shaded`);
+  }
+  if (state.scanId !== id) return;  // another scan was opened meanwhile
+  map.colorSpace = THREE.SRGBColorSpace;
+  const pos = new Float32Array(faces.length * 3);
+  for (let i = 0; i < faces.length; ++i) pos.set(positions.subarray(3 * faces[i], 3 * faces[i] + 3), 3 * i);
+  const g = new THREE.BufferGeometry();
+  g.setAttribute('position', new THREE.BufferAttribute(pos, 3));
+  g.setAttribute('uv', new THREE.BufferAttribute(new Float32Array(uv.data), 2));
+  g.computeBoundingSphere();
+  texturedMesh = new THREE.Mesh(g, new THREE.MeshBasicMaterial({ map, side: THREE.DoubleSide }));
+  groups.scan.add(texturedMesh);
+  applyScanLook();
+}
+
+// The texture ↔ shading toggle.
+function applyScanLook() {
+  const textured = !!texturedMesh && $('show-texture').checked;
+  if (texturedMesh) texturedMesh.visible = textured;
+  if (shadedMesh) shadedMesh.visible = !textured;
+  scanMesh = textured ? texturedMesh : shadedMesh;
+  needsRender = true;
 }
 
 // ---------- picking ----------
@@ -569,19 +609,26 @@ async function exportResult() {
   refreshFiles();
 }
 
-async function upload(file) {
-  const res = await fetch('/api/upload?name=' + encodeURIComponent('uploads/' + file.name), { method: 'POST', body: file });
-  const data = await res.json();
-  if (res.status !== 201) return showMessage(data.error);
+// Uploads the chosen files into uploads/ (a textured OBJ with its .mtl and image: choose them
+// together), then opens the scan among them.
+async function upload(files) {
+  let scan = null;
+  for (const file of files) {
+    const res = await fetch('/api/upload?name=' + encodeURIComponent('uploads/' + file.name), { method: 'POST', body: file });
+    const data = await res.json();
+    if (res.status !== 201) return showMessage(data.error);
+    if (/\.(ply|obj|stl|vtk|vtp)$/i.test(data.path)) scan = data.path;
+  }
   await refreshFiles();
-  $('scan-path').value = data.path;
-  if (/\.(ply|obj|stl)$/i.test(data.path)) openScan(data.path);
+  if (!scan) return showMessage(`Uploaded ${files.length} file(s); none is a scan (.ply .obj .stl .vtk .vtp).`, true);
+  $('scan-path').value = scan;
+  openScan(scan);
 }
 
 // ---------- wiring ----------
 $('open-scan').onclick = () => openScan($('scan-path').value);
 $('scan-path').addEventListener('keydown', (e) => { if (e.key === 'Enter') openScan($('scan-path').value); });
-$('upload').onchange = (e) => e.target.files[0] && upload(e.target.files[0]);
+$('upload').onchange = (e) => e.target.files.length && upload([...e.target.files]);
 $('fit').onclick = fit;
 $('cancel').onclick = () => api('POST', `/api/scans/${state.scanId}/cancel`);
 $('suggest').onclick = suggest;
@@ -591,6 +638,7 @@ $('export-mrk').onclick = saveLandmarks;
 $('download-mrk').onclick = downloadLandmarks;
 $('export').onclick = exportResult;
 $('map').onclick = mapFrom;
+$('show-texture').onchange = applyScanLook;
 $('show-model').onchange = buildModel;
 $('show-distance').onchange = buildModel;
 $('model-opacity').oninput = buildModel;
@@ -605,7 +653,7 @@ window.breastfitTest = {
     const r = canvas.getBoundingClientRect();
     return { x: r.left + (v.x + 1) / 2 * r.width, y: r.top + (1 - v.y) / 2 * r.height };
   },
-  state: () => ({ scanId: state.scanId, landmarks: state.landmarks, selected: state.selected, suggested: state.suggested,
+  state: () => ({ scanId: state.scanId, textured: !!texturedMesh && texturedMesh.visible, landmarks: state.landmarks, selected: state.selected, suggested: state.suggested,
     job: state.job, fitRunning: state.job === 'fit', result: state.result && { generation: state.result.generation, warm: state.result.warm,
       usable: state.result.usable, server_ms: state.result.server_ms, drawings: state.result.drawings.map((d) => ({ name: d.name, colour: d.colour })) } }),
   setView,

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cstring>
 #include <functional>
 #include <fstream>
 #include <thread>
@@ -14,6 +15,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "breastfit/io/io.h"
 #include "breastfit/io/markups.h"
 #include "breastfit/pipeline/register_outputs.h"
 #include "breastfit/synth/case_writer.h"
@@ -495,6 +497,54 @@ TEST(Server, CancelWhileStreamingAndStopWithAStreamOpen) {
   s.reset();  // stop() + join, with the stream open
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 5.0);
   listener.join();
+}
+
+// A textured OBJ (the synthetic scan with texture coordinates, its .mtl and image): the page gets
+// the image and the coordinates per face corner; an image outside the workspace is refused and
+// the scan shown shaded.
+TEST(Server, ServesATexturedObjsImageAndCoordinates) {
+  const fs::path dir = fixture().workspace / "textured";
+  fs::create_directories(dir);
+  TriangleMesh m = io::read_mesh(fixture().workspace / "cases" / "a" / "scan.ply");
+  m.UV.resize(m.V.rows(), 2);
+  for (Eigen::Index i = 0; i < m.V.rows(); ++i) m.UV.row(i) << (i % 7) / 7.0, (i % 5) / 5.0;
+  m.FUV = m.F;
+  io::write_mesh(dir / "plain.obj", m);
+  std::ifstream in(dir / "plain.obj");
+  const std::string obj((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::ofstream(dir / "scan.obj") << "mtllib scan.mtl\n" << obj;
+  std::ofstream(dir / "out.obj") << "mtllib out.mtl\n" << obj;
+  std::ofstream(dir / "scan.mtl") << "newmtl skin\nmap_Kd skin.png\n";
+  std::ofstream(dir / "out.mtl") << "newmtl skin\nmap_Kd ../../secret.png\n";
+  const std::string png = "\x89PNG\r\n\x1a\nnot decoded by the server";
+  std::ofstream(dir / "skin.png", std::ios::binary) << png;
+
+  RunningServer s({});
+  auto c = s.client();
+  const auto opened = c.Post("/api/scans", json{{"path", "textured/scan.obj"}}.dump(), "application/json");
+  ASSERT_EQ(opened->status, 200) << opened->body;
+  EXPECT_TRUE(body(opened)["textured"].get<bool>());
+  const std::string id = body(opened)["id"];
+  const auto image = c.Get(("/api/scans/" + id + "/texture").c_str());
+  ASSERT_EQ(image->status, 200) << image->body;
+  EXPECT_EQ(image->body, png);
+  EXPECT_EQ(image->get_header_value("Content-Type"), "image/png");
+  const auto uv = c.Get(("/api/scans/" + id + "/uv").c_str());
+  ASSERT_EQ(uv->status, 200);
+  const auto faces = body(opened)["faces"].get<size_t>();
+  ASSERT_EQ(uv->body.size(), faces * 3 * 2 * sizeof(float));
+  float u = 0;  // corner 1 of face 0
+  std::memcpy(&u, uv->body.data() + 2 * sizeof(float), sizeof u);
+  EXPECT_FLOAT_EQ(u, static_cast<float>((m.F(0, 1) % 7) / 7.0));
+
+  const auto outside = c.Post("/api/scans", json{{"path", "textured/out.obj"}}.dump(), "application/json");
+  ASSERT_EQ(outside->status, 200) << outside->body;
+  EXPECT_FALSE(body(outside)["textured"].get<bool>());
+  EXPECT_NE(body(outside)["warnings"].dump().find("shown shaded"), std::string::npos) << outside->body;
+  EXPECT_EQ(c.Get(("/api/scans/" + body(outside)["id"].get<std::string>() + "/texture").c_str())->status, 400);
+  const std::string ply = open_scan(c, "cases/a/scan.ply");
+  EXPECT_EQ(c.Get(("/api/scans/" + ply + "/texture").c_str())->status, 400);
+  EXPECT_EQ(c.Get(("/api/scans/" + ply + "/uv").c_str())->status, 400);
 }
 
 TEST(Server, StopEndsRun) {

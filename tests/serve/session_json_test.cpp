@@ -43,6 +43,26 @@ TEST(SessionJson, ScanMeshBinaryLayout) {
   EXPECT_EQ(c, 2u);
 }
 
+TEST(SessionJson, ScanUvBinaryPerFaceCorner) {
+  pipeline::PreparedScan s;
+  s.mesh_mm.V.setZero(3, 3);
+  s.mesh_mm.F.resize(1, 3);
+  s.mesh_mm.F << 0, 1, 2;
+  EXPECT_TRUE(scan_uv_binary(s).empty());
+  s.mesh_mm.UV.resize(2, 2);
+  s.mesh_mm.UV << 0.25, 0.5, 0.75, 1.0;
+  s.mesh_mm.FUV.resize(1, 3);
+  s.mesh_mm.FUV << 1, 0, 1;  // corners share and repeat coordinates
+  const std::string b = scan_uv_binary(s);
+  ASSERT_EQ(b.size(), 6 * sizeof(float));
+  float uv[6];
+  std::memcpy(uv, b.data(), sizeof uv);
+  EXPECT_FLOAT_EQ(uv[0], 0.75f);
+  EXPECT_FLOAT_EQ(uv[1], 1.0f);
+  EXPECT_FLOAT_EQ(uv[2], 0.25f);
+  EXPECT_FLOAT_EQ(uv[5], 1.0f);
+}
+
 TEST(SessionJson, SuggestionAndStatus) {
   auto o = std::make_shared<SuggestOutcome>();
   o->landmarks.push_back({"nipple_R", Vec3(1, 2, 3), 0.25, "breast tip on the scan"});

@@ -4,7 +4,8 @@
 // where the true landmarks are on screen, the scan is fitted, the drawings are looked for in the
 // canvas (their colours), one landmark is dragged and the scan re-fitted (warm start), the outputs
 // are exported and read back with `breastfit inspect`; a supine scan of the same subject is opened,
-// its landmarks imported, fitted, and the standing drawings mapped onto it.
+// its landmarks imported, fitted, and the standing drawings mapped onto it; a textured OBJ is
+// shown in its texture's colour, and shaded with the toggle off.
 //
 // Usage: node workstation_browser_test.mjs BREASTFIT_EXE WEB_NODE_MODULES WORK_DIR [SCREENSHOT_DIR]
 // Exit codes: 0 passed, 1 failed, 77 skipped (node_modules missing: run scripts/setup.sh).
@@ -205,6 +206,57 @@ try {
   const mapText = await page.textContent('#map-result');
   check(/Mapped 5 drawings from case\/scan.ply/.test(mapText), `standing drawings mapped onto the supine scan: "${mapText}"`);
   await page.screenshot({ path: path.join(shots, 'workstation_map.png') });
+
+  // A textured OBJ: the template's surface with texture coordinates, its .mtl and a small PNG of
+  // one strong colour (made by the browser's canvas), uploaded together. Shown in that colour;
+  // the toggle gives the shading back.
+  const colour = [30, 160, 60];
+  const png = await page.evaluate((c) => {
+    const cv = document.createElement('canvas');
+    cv.width = cv.height = 8;
+    const ctx = cv.getContext('2d');
+    ctx.fillStyle = `rgb(${c.join(',')})`;
+    ctx.fillRect(0, 0, 8, 8);
+    return cv.toDataURL('image/png').split(',')[1];
+  }, colour);
+  const tex = path.join(work, 'textured');
+  fs.mkdirSync(tex);
+  fs.writeFileSync(path.join(tex, 'skin.png'), Buffer.from(png, 'base64'));
+  fs.writeFileSync(path.join(tex, 'torso.mtl'), 'newmtl skin\nKd 1 1 1\nmap_Kd skin.png\n');
+  fs.writeFileSync(path.join(work, 'rest.json'), '{}');
+  execFileSync(exe, ['template', 'pose', '--params', path.join(work, 'rest.json'), '--out', path.join(work, 'torso.obj')]);
+  const obj = ['mtllib torso.mtl', 'usemtl skin'];
+  let nv = 0;
+  for (const line of fs.readFileSync(path.join(work, 'torso.obj'), 'utf8').split('\n')) {
+    if (line.startsWith('v ')) { obj.push(line, `vt ${(nv % 10) / 10 + 0.05} ${(Math.floor(nv / 10) % 10) / 10 + 0.05}`); ++nv; }
+    else if (line.startsWith('f ')) obj.push('f ' + line.slice(2).trim().split(/\s+/).map((t) => `${t}/${t}`).join(' '));
+  }
+  fs.writeFileSync(path.join(tex, 'torso.obj'), obj.join('\n') + '\n');
+  await page.setInputFiles('#upload', ['torso.obj', 'torso.mtl', 'skin.png'].map((f) => path.join(tex, f)));
+  await page.waitForFunction(() => window.breastfitTest.state().textured, null, { timeout: 60000 });
+  await page.waitForTimeout(300);
+  await page.screenshot({ path: path.join(shots, 'workstation_texture.png') });
+  const share = async () => page.evaluate(async (c) => {
+    const img = new Image();
+    img.src = document.getElementById('canvas').toDataURL('image/png');
+    await img.decode();
+    const cv = document.createElement('canvas');
+    cv.width = img.width; cv.height = img.height;
+    const ctx = cv.getContext('2d');
+    ctx.drawImage(img, 0, 0);
+    const px = ctx.getImageData(0, 0, cv.width, cv.height).data;
+    let n = 0;
+    for (let i = 0; i < px.length; i += 4) if (Math.abs(px[i] - c[0]) + Math.abs(px[i + 1] - c[1]) + Math.abs(px[i + 2] - c[2]) < 24) ++n;
+    return n / (px.length / 4);
+  }, colour);
+  const textured = await share();
+  check(textured > 0.1, `the textured scan shows the texture's colour (${(100 * textured).toFixed(1)} % of the view)`);
+  await page.uncheck('#show-texture');
+  await page.waitForTimeout(300);
+  const shaded = await share();
+  check(shaded < 0.001 && !(await page.evaluate(() => window.breastfitTest.state())).textured,
+    `texture off: the scan is shaded (${(100 * shaded).toFixed(2)} % in the texture's colour)`);
+  await page.check('#show-texture');
 } catch (e) {
   console.error(e.stack || String(e));
   exitCode = 1;

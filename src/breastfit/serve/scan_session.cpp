@@ -2,6 +2,8 @@
 
 #include <time.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 
 #include "breastfit/core/errors.h"
@@ -39,7 +41,17 @@ ScanSession::ScanSession(std::string id, std::filesystem::path scan_path, std::s
       model_(std::move(model)),
       options_(std::move(options)),
       target_(pipeline::prepare_target(io::read_mesh(scan_path_), name_, std::nullopt, options_)),
-      frame_(mesh::body_frame_from_principal_axes(target_.scan.mesh_mm)) {}
+      frame_(mesh::body_frame_from_principal_axes(target_.scan.mesh_mm)) {
+  std::string ext = scan_path_.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (ext != ".obj") return;
+  texture_ = io::obj_texture(scan_path_);
+  if (!texture_.image.empty() && !target_.scan.mesh_mm.has_texcoords()) {
+    texture_.problem = "it names the image " + texture_.image.filename().string() +
+                       " but not every face has texture coordinates (vt)";
+    texture_.image.clear();
+  }
+}
 
 ScanSession::~ScanSession() {
   cancel();

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "breastfit/fit/fit_options.h"
+#include "breastfit/io/obj_texture.h"
 #include "breastfit/mesh/body_frame.h"
 #include "breastfit/mesh/landmarks.h"
 #include "breastfit/model/rigged_model.h"
@@ -81,6 +82,10 @@ class ScanSession {
   /// The scan's body frame from its shape (mesh::body_frame_from_principal_axes): the page's
   /// standard views before a fit.
   const mesh::BodyFrame& body_frame() const { return frame_; }
+  /// A textured OBJ's colour image (io::obj_texture), for display only: image empty when the
+  /// scan is not an OBJ, has no texture coordinates (then problem says so when it names an
+  /// image) or names no image.
+  const io::ObjTexture& texture() const { return texture_; }
   /// Runs `f` on the scan's closest-point index while no fit of this scan runs (a fit changes the
   /// index's normal sign; one started meanwhile waits for `f`). Returns false, without calling
   /// `f`, when a fit is running.
@@ -126,6 +131,7 @@ class ScanSession {
   fit::FitOptions options_;
   pipeline::PreparedTarget target_;
   mesh::BodyFrame frame_;
+  io::ObjTexture texture_;
 
   mutable std::mutex mutex_;
   mutable std::condition_variable changed_;  // status_.version grew

@@ -64,12 +64,14 @@ std::string cookie_token(const httplib::Request& req) {
 }
 
 std::string mime_type(const fs::path& p) {
-  const std::string ext = p.extension().string();
+  std::string ext = p.extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   if (ext == ".html") return "text/html; charset=utf-8";
   if (ext == ".js" || ext == ".mjs") return "text/javascript; charset=utf-8";
   if (ext == ".css") return "text/css; charset=utf-8";
   if (ext == ".json") return "application/json";
   if (ext == ".png") return "image/png";
+  if (ext == ".jpg" || ext == ".jpeg") return "image/jpeg";
   if (ext == ".svg") return "image/svg+xml";
   return "application/octet-stream";
 }
@@ -146,6 +148,19 @@ struct Server::Impl {
     guard = RequestGuard(guard.token(), options.host, port);
     http.set_payload_max_length(options.max_upload_bytes);
     routes();
+  }
+
+  // A textured OBJ's image when it is a file of the workspace (a library may name any path).
+  // \throws InvalidInput naming the problem when it has none or it is not usable
+  fs::path texture_image(const ScanSession& s) const {
+    const io::ObjTexture& t = s.texture();
+    if (t.image.empty())
+      throw InvalidInput(s.name() + " has no texture" + (t.problem.empty() ? std::string() : ": " + t.problem));
+    try {
+      return workspace.existing_file(workspace.relative(t.image.lexically_normal()));
+    } catch (const InvalidInput& e) {
+      throw InvalidInput(s.name() + ": its texture image cannot be shown (" + e.what() + ")");
+    }
   }
 
   std::shared_ptr<ScanSession> session(const httplib::Request& req) {
@@ -228,6 +243,16 @@ struct Server::Impl {
         inputs[id] = {p};
       }
       const auto& s = *sessions[id];
+      std::vector<std::string> warnings = s.scan().warnings;
+      bool textured = false;
+      if (!s.texture().image.empty() || !s.texture().problem.empty()) {
+        try {
+          texture_image(s);
+          textured = true;
+        } catch (const InvalidInput& e) {
+          warnings.push_back(std::string(e.what()) + ": shown shaded");
+        }
+      }
       send_json(res, 200,
                 {{"id", id},
                  {"name", s.name()},
@@ -235,7 +260,8 @@ struct Server::Impl {
                  {"faces", s.scan().mesh_mm.F.rows()},
                  {"units", std::string(mesh::units_name(s.scan().units))},
                  {"point_cloud", s.scan().was_point_cloud},
-                 {"warnings", s.scan().warnings},
+                 {"warnings", warnings},
+                 {"textured", textured},
                  {"body_frame", to_json(s.body_frame())},
                  {"landmark_names", [this] {
                     json a = json::array();
@@ -289,6 +315,17 @@ struct Server::Impl {
 
     http.Get(R"(/api/scans/(\d+)/mesh)", guarded([this](const httplib::Request& req, httplib::Response& res) {
       res.set_content(scan_mesh_binary(session(req)->scan()), "application/octet-stream");
+    }));
+
+    // A textured scan: its image and its texture coordinates per face corner.
+    http.Get(R"(/api/scans/(\d+)/texture)", guarded([this](const httplib::Request& req, httplib::Response& res) {
+      const fs::path p = texture_image(*session(req));
+      res.set_content(read_file(p), mime_type(p));
+    }));
+    http.Get(R"(/api/scans/(\d+)/uv)", guarded([this](const httplib::Request& req, httplib::Response& res) {
+      const auto s = session(req);
+      if (!s->scan().mesh_mm.has_texcoords()) throw InvalidInput(s->name() + " has no texture coordinates");
+      res.set_content(scan_uv_binary(s->scan()), "application/octet-stream");
     }));
 
     http.Post(R"(/api/scans/(\d+)/fit)", guarded([this](const httplib::Request& req, httplib::Response& res) {

@@ -52,6 +52,17 @@ std::string scan_mesh_binary(const pipeline::PreparedScan& scan) {
   return out;
 }
 
+std::string scan_uv_binary(const pipeline::PreparedScan& scan) {
+  const TriangleMesh& m = scan.mesh_mm;
+  std::string out;
+  if (!m.has_texcoords()) return out;
+  out.reserve(24 * m.FUV.rows());
+  for (Eigen::Index f = 0; f < m.FUV.rows(); ++f)
+    for (int k = 0; k < 3; ++k)
+      for (int c = 0; c < 2; ++c) append(out, static_cast<float>(m.UV(m.FUV(f, k), c)));
+  return out;
+}
+
 json landmarks_to_json(const std::vector<NamedPoint>& points) {
   json a = json::array();
   for (const auto& p : points) a.push_back({{"name", p.name}, {"position", vec(p.position)}});

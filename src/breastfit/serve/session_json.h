@@ -16,6 +16,11 @@ namespace breastfit::serve {
 /// uint32 #F, float32 x y z per vertex, uint32 a b c per face.
 std::string scan_mesh_binary(const pipeline::PreparedScan& scan);
 
+/// The scan's texture coordinates per face corner, for a textured display (the page gives each
+/// corner its own vertex: one vertex may have several coordinates): little-endian float32 u v of
+/// corner k of face f at index 2 * (3 f + k). Empty when the scan has none.
+std::string scan_uv_binary(const pipeline::PreparedScan& scan);
+
 /// The job status: job ("fit" or "suggest"), state, stage, iterations, message, and (when a fit
 /// or a suggestion has finished) the outcome as "result" and "suggestion". `with_outcomes` false:
 /// without those two (the event stream's progress events).
