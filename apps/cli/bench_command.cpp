@@ -56,13 +56,33 @@ std::vector<double> time_refits(const std::filesystem::path& dir, const std::sha
   return ms;
 }
 
+// The workstation's Suggest: the scan opened once, then `repeat` landmark suggestions
+// (serve::ScanSession::run_suggest: a landmark-free fit, the landmarks snapped to the scan).
+// Returns each one's server time, ms, wall and CPU as time_refits.
+std::vector<double> time_suggests(const std::filesystem::path& dir, const std::shared_ptr<const model::RiggedModel>& model,
+                                  const fit::FitOptions& options, int repeat, bool& usable, std::vector<double>& cpu_ms) {
+  serve::ScanSession session("bench", dir / "scan.ply", (dir / "scan.ply").string(), model, options);
+  std::vector<double> ms;
+  usable = true;
+  for (int k = 0; k < repeat && usable; ++k) {
+    try {
+      const auto outcome = session.run_suggest();
+      ms.push_back(outcome->server_ms);
+      cpu_ms.push_back(outcome->server_cpu_ms);
+    } catch (const InvalidInput&) {
+      usable = false;  // the landmark-free fit is not usable
+    }
+  }
+  return ms;
+}
+
 }  // namespace
 
 void register_bench(CLI::App& app, int& exit_code) {
   struct Args {
     std::string dir, template_path, config, json_out;
     int repeat = 5;
-    bool no_landmarks = false, refit = false;
+    bool no_landmarks = false, refit = false, suggest = false;
     FitFlags fit;
   };
   auto args = std::make_shared<Args>();
@@ -75,6 +95,9 @@ void register_bench(CLI::App& app, int& exit_code) {
   sub->add_flag("--no-landmarks", args->no_landmarks, "landmark-free registration");
   sub->add_flag("--refit", args->refit,
                 "time the workstation's warm-started re-fit after moving one landmark by 3 mm (server time, ms)");
+  sub->add_flag("--suggest", args->suggest,
+                "time the workstation's Suggest: the 12 landmarks found on the open scan (server time, ms)")
+      ->excludes("--refit");
   sub->add_option("--template,-t", args->template_path, "rigged template (.glb/.gltf)");
   sub->add_option("--config", args->config, "JSON file with fit options");
   sub->add_option("--json", args->json_out, "also write every number to this JSON file");
@@ -85,29 +108,33 @@ void register_bench(CLI::App& app, int& exit_code) {
     if (args->no_landmarks) options.use_landmarks = false;
     nlohmann::json cases = nlohmann::json::array();
     std::vector<double> medians, total_medians;
-    if (args->refit) {
+    if (args->refit || args->suggest) {
+      const std::string job = args->suggest ? "suggest" : "refit";
       std::vector<double> all, all_cpu, cpu_medians;
-      std::printf("%-24s %12s %12s %12s %8s\n", "case", "refit_ms_med", "refit_ms_max", "cpu_ms_med", "status");
+      std::printf("%-24s %12s %12s %12s %8s\n", "case", (job + "_ms_med").c_str(), (job + "_ms_max").c_str(), "cpu_ms_med",
+                  "status");
       for (const auto& dir : experiments::find_case_dirs(args->dir)) {
         bool usable = false;
         std::vector<double> cpu;
-        const std::vector<double> ms = time_refits(dir, model, options, args->repeat, usable, cpu);
+        const std::vector<double> ms = args->suggest ? time_suggests(dir, model, options, args->repeat, usable, cpu)
+                                                     : time_refits(dir, model, options, args->repeat, usable, cpu);
         all.insert(all.end(), ms.begin(), ms.end());
         all_cpu.insert(all_cpu.end(), cpu.begin(), cpu.end());
         medians.push_back(median(ms));
         cpu_medians.push_back(median(cpu));
         std::printf("%-24s %12.1f %12.1f %12.1f %8s\n", dir.filename().string().c_str(), median(ms),
                     ms.empty() ? 0.0 : *std::max_element(ms.begin(), ms.end()), median(cpu), usable ? "ok" : "FAILED");
-        cases.push_back({{"case", dir.filename().string()}, {"refit_ms_median", median(ms)}, {"refit_ms_all", ms},
-                         {"refit_cpu_ms_median", median(cpu)}, {"refit_cpu_ms_all", cpu}, {"usable", usable}});
+        cases.push_back({{"case", dir.filename().string()}, {job + "_ms_median", median(ms)}, {job + "_ms_all", ms},
+                         {job + "_cpu_ms_median", median(cpu)}, {job + "_cpu_ms_all", cpu}, {"usable", usable}});
       }
-      std::printf("re-fit, median of all %zu: %.1f ms wall, %.1f ms CPU (median of the case medians: %.1f ms wall, "
+      std::printf("%s, median of all %zu: %.1f ms wall, %.1f ms CPU (median of the case medians: %.1f ms wall, "
                   "%.1f ms CPU)\n",
-                  all.size(), median(all), median(all_cpu), median(medians), median(cpu_medians));
+                  args->suggest ? "suggest" : "re-fit", all.size(), median(all), median(all_cpu), median(medians),
+                  median(cpu_medians));
       if (!args->json_out.empty()) {
         std::ofstream f(args->json_out);
         if (!f) throw IoError(args->json_out, "cannot open for writing");
-        f << nlohmann::json{{"cases", cases}, {"median_refit_ms", median(all)}, {"median_refit_cpu_ms", median(all_cpu)},
+        f << nlohmann::json{{"cases", cases}, {"median_" + job + "_ms", median(all)}, {"median_" + job + "_cpu_ms", median(all_cpu)},
                             {"repeat", args->repeat}}
                  .dump(1)
           << "\n";

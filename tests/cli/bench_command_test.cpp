@@ -48,6 +48,25 @@ TEST(BenchCommand, PrintsSolverAndWholeRunTimesPerCaseAndTheirMedians) {
   EXPECT_EQ(runs[0]["cases"][0]["iterations"], runs[1]["cases"][0]["iterations"]);
 }
 
+// --suggest: the workstation's Suggest timed per case (server time, wall and CPU), every run in the JSON.
+TEST(BenchCommand, TimesTheWorkstationsSuggest) {
+  if (test::cli_path().empty()) GTEST_SKIP() << "CLI not built";
+  const fs::path tmp = test::temp_dir();
+  const fs::path cases = tmp / "cases";
+  std::string out;
+  ASSERT_EQ(test::run_cli("synth --quiet --seed 6 --out '" + (cases / "c6").string() + "'", &out), 0) << out;
+  const fs::path json = tmp / "suggest.json";
+  ASSERT_EQ(test::run_cli("bench '" + cases.string() + "' --suggest -n 2 --json '" + json.string() + "'", &out), 0) << out;
+  EXPECT_TRUE(std::regex_search(out, std::regex(R"(case\s+suggest_ms_med\s+suggest_ms_max\s+cpu_ms_med)"))) << out;
+  EXPECT_TRUE(std::regex_search(out, std::regex(R"(c6\s+[\d.]+\s+[\d.]+\s+[\d.]+\s+ok)"))) << out;
+  EXPECT_NE(out.find("suggest, median of all 2:"), std::string::npos) << out;
+  std::ifstream f(json);
+  const auto j = nlohmann::json::parse(f);
+  ASSERT_EQ(j["cases"][0]["suggest_ms_all"].size(), 2u);
+  EXPECT_GT(j["median_suggest_ms"].get<double>(), 0.0);
+  EXPECT_NE(test::run_cli("bench '" + cases.string() + "' --suggest --refit", &out), 0) << out;
+}
+
 TEST(BenchCommand, RejectsANegativeThreadCount) {
   if (test::cli_path().empty()) GTEST_SKIP() << "CLI not built";
   std::string out;
