@@ -77,6 +77,16 @@ struct RunningServer {
   }
 };
 
+// Options of a fit long enough to be caught running: no convergence test ends a stage early.
+ServerOptions long_fit() {
+  ServerOptions o;
+  o.fit_options.solver.function_tolerance = 1e-300;
+  o.fit_options.solver.gradient_tolerance = 0;
+  o.fit_options.solver.parameter_tolerance = 0;
+  for (auto* st : o.fit_options.stages()) st->max_iterations = 400;
+  return o;
+}
+
 json body(const httplib::Result& r) { return json::parse(r->body); }
 
 json landmarks_json() {
@@ -232,13 +242,7 @@ TEST(Server, ABadFileGivesAMessageAndTheServerKeepsServing) {
 }
 
 TEST(Server, OneFitPerScanAtATimeAndCancel) {
-  ServerOptions o;
-  // A fit long enough to be caught running: no convergence test ends a stage early.
-  o.fit_options.solver.function_tolerance = 1e-300;
-  o.fit_options.solver.gradient_tolerance = 0;
-  o.fit_options.solver.parameter_tolerance = 0;
-  for (auto* st : o.fit_options.stages()) st->max_iterations = 400;
-  RunningServer s(o);
+  RunningServer s(long_fit());
   auto a = s.client();
   auto b = s.client();  // a second window
   const std::string id = open_scan(a, "cases/b/scan.ply");
@@ -467,12 +471,7 @@ TEST(Server, StreamsTheJobsProgressAndEnd) {
 // Cancel while the page listens: the stream ends with the cancellation. Stopping the server (as
 // Ctrl-C does) with a stream open returns at once.
 TEST(Server, CancelWhileStreamingAndStopWithAStreamOpen) {
-  ServerOptions o;
-  o.fit_options.solver.function_tolerance = 1e-300;
-  o.fit_options.solver.gradient_tolerance = 0;
-  o.fit_options.solver.parameter_tolerance = 0;
-  for (auto* st : o.fit_options.stages()) st->max_iterations = 400;
-  auto s = std::make_unique<RunningServer>(o);
+  auto s = std::make_unique<RunningServer>(long_fit());
   auto c = s->client();
   auto canceller = s->client();
   const std::string id = open_scan(c, "cases/b/scan.ply");

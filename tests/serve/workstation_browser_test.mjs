@@ -23,6 +23,30 @@ if (!fs.existsSync(path.join(nodeModules, 'playwright-core'))) {
 const require = createRequire(path.join(path.resolve(nodeModules), 'x.js'));
 const { chromium } = require('playwright-core');
 
+// The canvas's pixels within `tolerance` (|ΔR| + |ΔG| + |ΔB|) of each colour ([r, g, b]), counted
+// left and right of the screen x `splitX`: {counts: [[left, right], ...], total}.
+async function countColours(page, colours, tolerance, splitX = 0) {
+  return page.evaluate(async ({ colours, tolerance, splitX }) => {
+    const src = document.getElementById('canvas');
+    const box = src.getBoundingClientRect();
+    const img = new Image();
+    img.src = src.toDataURL('image/png');
+    await img.decode();
+    const c = document.createElement('canvas');
+    c.width = img.width; c.height = img.height;
+    const ctx = c.getContext('2d');
+    ctx.drawImage(img, 0, 0);
+    const px = ctx.getImageData(0, 0, c.width, c.height).data;
+    const split = (splitX - box.left) / box.width * c.width;
+    const n = colours.map(() => [0, 0]);
+    for (let i = 0; i < px.length; i += 4) {
+      const side = ((i / 4) % c.width) < split ? 0 : 1;
+      colours.forEach((q, k) => { if (Math.abs(px[i] - q[0]) + Math.abs(px[i + 1] - q[1]) + Math.abs(px[i + 2] - q[2]) < tolerance) n[k][side]++; });
+    }
+    return { counts: n, total: px.length / 4 };
+  }, { colours, tolerance, splitX });
+}
+
 const fail = (msg) => { console.error('FAILED: ' + msg); process.exitCode = 1; throw new Error(msg); };
 const check = (ok, msg) => { if (!ok) fail(msg); else console.log('ok: ' + msg); };
 
@@ -126,26 +150,8 @@ try {
   // The drawings' colours in the canvas, counted on each side of the body's midline (the
   // projected sternal notch): the two breast contours share a colour, one on each side.
   const midX = (await page.evaluate((q) => window.breastfitTest.project(q), truth.sternal_notch)).x;
-  const counts = await page.evaluate(async ({ colours, midX }) => {
-    const src = document.getElementById('canvas');
-    const box = src.getBoundingClientRect();
-    const img = new Image();
-    img.src = src.toDataURL('image/png');
-    await img.decode();
-    const c = document.createElement('canvas');
-    c.width = img.width; c.height = img.height;
-    const ctx = c.getContext('2d');
-    ctx.drawImage(img, 0, 0);
-    const px = ctx.getImageData(0, 0, c.width, c.height).data;
-    const split = (midX - box.left) / box.width * c.width;
-    const rgb = colours.map((h) => [1, 3, 5].map((i) => parseInt(h.slice(i, i + 2), 16)));
-    const n = rgb.map(() => [0, 0]);
-    for (let i = 0; i < px.length; i += 4) {
-      const side = ((i / 4) % c.width) < split ? 0 : 1;
-      rgb.forEach((q, k) => { if (Math.abs(px[i] - q[0]) + Math.abs(px[i + 1] - q[1]) + Math.abs(px[i + 2] - q[2]) < 12) n[k][side]++; });
-    }
-    return n;
-  }, { colours: st.result.drawings.map((d) => d.colour), midX });
+  const counts = (await countColours(page, st.result.drawings.map((d) => [1, 3, 5].map((i) => parseInt(d.colour.slice(i, i + 2), 16))),
+    12, midX)).counts;
   st.result.drawings.forEach((d, k) => console.log(`  ${d.name} ${d.colour}: ${counts[k][0]} | ${counts[k][1]} pixels (screen left | right)`));
   const contour = st.result.drawings.findIndex((d) => d.name === 'breast_contour_R');
   const sternum = st.result.drawings.findIndex((d) => d.name === 'sternum');
@@ -236,19 +242,10 @@ try {
   await page.waitForFunction(() => window.breastfitTest.state().textured, null, { timeout: 60000 });
   await page.waitForTimeout(300);
   await page.screenshot({ path: path.join(shots, 'workstation_texture.png') });
-  const share = async () => page.evaluate(async (c) => {
-    const img = new Image();
-    img.src = document.getElementById('canvas').toDataURL('image/png');
-    await img.decode();
-    const cv = document.createElement('canvas');
-    cv.width = img.width; cv.height = img.height;
-    const ctx = cv.getContext('2d');
-    ctx.drawImage(img, 0, 0);
-    const px = ctx.getImageData(0, 0, cv.width, cv.height).data;
-    let n = 0;
-    for (let i = 0; i < px.length; i += 4) if (Math.abs(px[i] - c[0]) + Math.abs(px[i + 1] - c[1]) + Math.abs(px[i + 2] - c[2]) < 24) ++n;
-    return n / (px.length / 4);
-  }, colour);
+  const share = async () => {
+    const { counts: [[left, right]], total } = await countColours(page, [colour], 24);
+    return (left + right) / total;
+  };
   const textured = await share();
   check(textured > 0.1, `the textured scan shows the texture's colour (${(100 * textured).toFixed(1)} % of the view)`);
   await page.uncheck('#show-texture');
