@@ -96,13 +96,13 @@ void register_bench(CLI::App& app, int& exit_code) {
   sub->add_flag("--refit", args->refit,
                 "time the workstation's warm-started re-fit after moving one landmark by 3 mm (server time, ms)");
   sub->add_flag("--suggest", args->suggest,
-                "time the workstation's Suggest: the 12 landmarks found on the open scan (server time, ms)")
-      ->excludes("--refit");
+                "time the workstation's Suggest: the 12 landmarks found on the open scan (server time, ms)");
   sub->add_option("--template,-t", args->template_path, "rigged template (.glb/.gltf)");
   sub->add_option("--config", args->config, "JSON file with fit options");
   sub->add_option("--json", args->json_out, "also write every number to this JSON file");
   add_fit_flags(*sub, args->fit);
   sub->callback([args, &exit_code] {
+    if (args->refit && args->suggest) throw InvalidInput("bench: --refit and --suggest time different things: choose one");
     const auto model = std::make_shared<const model::RiggedModel>(load_template(args->template_path));
     auto options = load_fit_options(args->config, args->fit);
     if (args->no_landmarks) options.use_landmarks = false;
