@@ -87,6 +87,16 @@ TEST(BreastFold, RefusesWhenUnsure) {
   EXPECT_FALSE(lowest_breast_on_scan(c.scan.V, tip - 80.0 * f.front, fitted, f.up, f.front));
   // No scan at all.
   EXPECT_FALSE(lowest_breast_on_scan(Points(0, 3), tip, fitted, f.up, f.front));
+  // The crossing far below the fitted lower pole (a breast shallower than the fold's depth):
+  // refused once the fitted point lies more than max_below_fitted_mm above it.
+  const auto fold = lowest_breast_on_scan(c.scan.V, tip, fitted, f.up, f.front);
+  ASSERT_TRUE(fold);
+  const double below = (fitted - *fold).dot(f.up);
+  BreastFoldOptions strict;
+  strict.max_below_fitted_mm = below - 1.0;
+  EXPECT_FALSE(lowest_breast_on_scan(c.scan.V, tip, fitted, f.up, f.front, strict));
+  strict.max_below_fitted_mm = below + 1.0;
+  EXPECT_TRUE(lowest_breast_on_scan(c.scan.V, tip, fitted, f.up, f.front, strict));
 }
 
 }  // namespace
