@@ -81,7 +81,10 @@ std::optional<Vec3> jugular_notch_on_scan(const Points& scan_vertices, const Vec
     }
   }
   if (!knee) return std::nullopt;
-  return Vec3(scan_vertices.row(vertex[*knee]).transpose());
+  // On the fitted midline: the strip gives the notch's height and depth, its front-most vertex may
+  // lie up to the strip's half-width to one side.
+  const Vec3 p = scan_vertices.row(vertex[*knee]).transpose();
+  return Vec3(p - (p - fitted_notch).dot(side) * side);
 }
 
 }  // namespace breastfit::fit

@@ -9,7 +9,9 @@
 /// midline profile — the most anterior scan point in each height bin of a thin sagittal strip
 /// through the fitted notch — and fits two straight lines to it, one below and one above a break
 /// height; the break that fits best, when the profile is clearly steeper below than above, is the
-/// notch. It refuses (nullopt) when the strip has too little scan or the profile has no such break.
+/// notch, placed on the fitted midline (the strip's front-most vertex may lie a few mm to one
+/// side, which dragged the fitted sternum sideways). It refuses (nullopt) when the strip has too
+/// little scan or the profile has no such break.
 #include <optional>
 
 #include "breastfit/core/types.h"
@@ -32,7 +34,7 @@ struct JugularNotchOptions {
   double min_slope_change = 0.15;
 };
 
-/// The notch on the scan (a scan vertex), or nullopt when unsure.
+/// The notch on the scan (in the fitted notch's sagittal plane), or nullopt when unsure.
 /// \param scan_vertices the scan (mm)
 /// \param fitted_notch the fitted model's notch (the strip's position and the window's centre)
 /// \param up the body's superior axis, \param front its anterior axis (unit, orthogonal)
