@@ -4,48 +4,14 @@
 
 #include <gtest/gtest.h>
 
-#include <map>
 #include <string>
 
-#include "breastfit/synth/synth_case.h"
-#include "support/default_template.h"
+#include "fit/synth_anatomy.h"
 
 namespace breastfit::fit {
 namespace {
 
-const synth::SynthCase& synth_case(synth::PoseType pose) {
-  static std::map<synth::PoseType, synth::SynthCase> cases;
-  auto it = cases.find(pose);
-  if (it == cases.end()) {
-    synth::SynthOptions o;
-    o.seed = pose == synth::PoseType::Standing ? 11 : 12;
-    o.pose = pose;
-    it = cases.emplace(pose, synth::make_case(*test::default_template(), o)).first;
-  }
-  return it->second;
-}
-
-Vec3 truth(const synth::SynthCase& c, const std::string& name) {
-  for (const auto& p : c.truth_landmarks)
-    if (p.name == name) return p.position;
-  ADD_FAILURE() << "no truth landmark " << name;
-  return Vec3::Zero();
-}
-
-struct Frame {
-  Vec3 up, front;
-};
-
-// The body's frame from the truth: up along the sternum, front level through the nipples.
-Frame body_frame(const synth::SynthCase& c) {
-  const Vec3 up = (truth(c, "sternal_notch") - truth(c, "xiphoid")).normalized();
-  Vec3 side = truth(c, "nipple_L") - truth(c, "nipple_R");
-  side = (side - side.dot(up) * up).normalized();
-  Vec3 front = up.cross(side);
-  const Vec3 nipples = 0.5 * (truth(c, "nipple_L") + truth(c, "nipple_R"));
-  if ((nipples - truth(c, "xiphoid")).dot(front) < 0) front = -front;
-  return {up, front};
-}
+using namespace test_anatomy;  // the synthetic torsos, their truth and body frame
 
 void expect_fold_found(synth::PoseType pose) {
   const synth::SynthCase& c = synth_case(pose);
@@ -87,6 +53,16 @@ TEST(BreastFold, RefusesWhenUnsure) {
   EXPECT_FALSE(lowest_breast_on_scan(c.scan.V, tip - 80.0 * f.front, fitted, f.up, f.front));
   // No scan at all.
   EXPECT_FALSE(lowest_breast_on_scan(Points(0, 3), tip, fitted, f.up, f.front));
+  // The crossing far below the fitted lower pole (a breast shallower than the fold's depth):
+  // refused once the fitted point lies more than max_below_fitted_mm above it.
+  const auto fold = lowest_breast_on_scan(c.scan.V, tip, fitted, f.up, f.front);
+  ASSERT_TRUE(fold);
+  const double below = (fitted - *fold).dot(f.up);
+  BreastFoldOptions strict;
+  strict.max_below_fitted_mm = below - 1.0;
+  EXPECT_FALSE(lowest_breast_on_scan(c.scan.V, tip, fitted, f.up, f.front, strict));
+  strict.max_below_fitted_mm = below + 1.0;
+  EXPECT_TRUE(lowest_breast_on_scan(c.scan.V, tip, fitted, f.up, f.front, strict));
 }
 
 }  // namespace

@@ -30,6 +30,7 @@ TEST(DetectLandmarks, FindsEveryLandmarkOnTheScanNearTheTruth) {
     if (l.name == "nipple_R" || l.name == "nipple_L") EXPECT_EQ(l.method, "breast tip on the scan");
     const bool lowest = l.name == "lowest_breast_R" || l.name == "lowest_breast_L";
     if (lowest) EXPECT_EQ(l.method, "breast fold on the scan") << l.name;
+    if (l.name == "sternal_notch") EXPECT_EQ(l.method, "jugular notch on the scan");
     for (const auto& t : c.truth_landmarks)
       if (t.name == l.name) {
         sum += (l.position_mm - t.position).norm();

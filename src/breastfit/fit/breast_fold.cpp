@@ -41,7 +41,9 @@ std::optional<Vec3> lowest_breast_on_scan(const Points& scan_vertices, const Vec
       const Vec3 a = scan_vertices.row(front_most[last]).transpose();
       const Vec3 c = scan_vertices.row(front_most[b]).transpose();
       const double t = (depth[last] - target) / (depth[last] - depth[b]);
-      return a + t * (c - a);
+      const Vec3 fold = a + t * (c - a);
+      if ((fitted_lowest - fold).dot(up) > options.max_below_fitted_mm) return std::nullopt;
+      return fold;
     }
     last = b;
   }

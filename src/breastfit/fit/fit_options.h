@@ -137,6 +137,9 @@ struct FitOptions {
   /// shape stage on, at the fold found on the scan below the nipple (breast_fold.h), when the
   /// detector is sure; otherwise it is left to the fit.
   bool anatomical_lowest_breast = true;
+  /// When the sternal notch is not given: it is held, from the shape stage on, where the
+  /// manubrium meets the neck on the scan's midline (jugular_notch.h), when the detector is sure.
+  bool anatomical_notch = true;
   double max_surface_mae_mm = 8.0;   ///< a final kept-correspondence MAE above this = not usable
   double min_kept_fraction = 0.25;   ///< fewer kept correspondences than this share = not usable
   /// Threads for the correspondence searches and the normal equations (0: all cores, or

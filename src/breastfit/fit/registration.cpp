@@ -3,12 +3,14 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <set>
 
 #include "breastfit/core/errors.h"
 #include "breastfit/core/timer.h"
 #include "breastfit/fit/breast_fold.h"
 #include "breastfit/fit/initialization.h"
+#include "breastfit/fit/jugular_notch.h"
 #include "breastfit/fit/orientation_search.h"
 #include "breastfit/fit/stage_minimizer.h"
 #include "breastfit/fit/problem.h"
@@ -142,32 +144,39 @@ std::vector<LandmarkTarget> breast_tip_targets(const model::RiggedModel& model, 
   return out;
 }
 
+// The fitted body's axes: up along the sternum (xiphoid → notch), front the model's outward
+// normals around both nipples (their lateral parts cancel), level. nullopt without those landmarks.
+struct BodyAxes {
+  Vec3 up, front;
+};
+std::optional<BodyAxes> fitted_body_axes(const model::RiggedModel& model, const Points& V, const Points& N,
+                                         const model::PoseParams& params) {
+  Vec3 up = posed_vertical_axis(model, params);
+  const auto notch = model.landmark_index("sternal_notch"), xiphoid = model.landmark_index("xiphoid");
+  if (notch && xiphoid)
+    up = (model_landmark_position(model, *notch, V, params) - model_landmark_position(model, *xiphoid, V, params))
+             .normalized();
+  Vec3 front = Vec3::Zero();
+  for (const char* name : {"nipple_R", "nipple_L"}) {
+    const auto idx = model.landmark_index(name);
+    if (!idx) return std::nullopt;
+    const Vec3 nipple = model_landmark_position(model, *idx, V, params);
+    for (Index i = 0; i < V.rows(); ++i)
+      if ((V.row(i).transpose() - nipple).norm() < 40.0) front += N.row(i).transpose();
+  }
+  front -= front.dot(up) * up;
+  if (front.norm() <= 0) return std::nullopt;
+  return BodyAxes{up, front.normalized()};
+}
+
 // Targets for the lowest breast points not in `held`: the fold found on the scan below each
 // nipple held (given or the breast's tip), when the detector is sure.
 std::vector<LandmarkTarget> breast_fold_targets(const model::RiggedModel& model, const Points& V,
                                                 const model::PoseParams& params, const ScanTarget& scan,
                                                 const std::vector<LandmarkTarget>& held) {
   std::vector<LandmarkTarget> out;
-  const Points N = mesh::vertex_normals(V, model.rest.F);
-  // Up along the sternum (the frame the fold's depth behind the tip is measured in).
-  Vec3 up = posed_vertical_axis(model, params);
-  const auto notch = model.landmark_index("sternal_notch"), xiphoid = model.landmark_index("xiphoid");
-  if (notch && xiphoid)
-    up = (model_landmark_position(model, *notch, V, params) - model_landmark_position(model, *xiphoid, V, params))
-             .normalized();
-  // The body's front: the model's outward normals around both nipples (their lateral parts
-  // cancel), level.
-  Vec3 front = Vec3::Zero();
-  for (const char* name : {"nipple_R", "nipple_L"}) {
-    const auto idx = model.landmark_index(name);
-    if (!idx) return out;
-    const Vec3 nipple = model_landmark_position(model, *idx, V, params);
-    for (Index i = 0; i < V.rows(); ++i)
-      if ((V.row(i).transpose() - nipple).norm() < 40.0) front += N.row(i).transpose();
-  }
-  front -= front.dot(up) * up;
-  if (front.norm() <= 0) return out;
-  front.normalize();
+  const auto axes = fitted_body_axes(model, V, mesh::vertex_normals(V, model.rest.F), params);
+  if (!axes) return out;
   for (const char* side : {"R", "L"}) {
     const std::string name = std::string("lowest_breast_") + side;
     const auto idx = model.landmark_index(name);
@@ -175,9 +184,24 @@ std::vector<LandmarkTarget> breast_fold_targets(const model::RiggedModel& model,
                                      [&](const LandmarkTarget& t) { return t.name == std::string("nipple_") + side; });
     if (!idx || nipple == held.end() || is_given(held, name)) continue;
     const Vec3 fitted = model_landmark_position(model, *idx, V, params);
-    if (const auto fold = lowest_breast_on_scan(scan.mesh().V, nipple->position, fitted, up, front))
+    if (const auto fold = lowest_breast_on_scan(scan.mesh().V, nipple->position, fitted, axes->up, axes->front))
       out.push_back({name, *idx, *fold, landmark_weight(name)});
   }
+  return out;
+}
+
+// The sternal notch when not given: where the manubrium meets the neck on the scan's midline.
+std::vector<LandmarkTarget> jugular_notch_targets(const model::RiggedModel& model, const Points& V,
+                                                  const model::PoseParams& params, const ScanTarget& scan,
+                                                  const std::vector<LandmarkTarget>& given) {
+  std::vector<LandmarkTarget> out;
+  const auto idx = model.landmark_index("sternal_notch");
+  if (!idx || is_given(given, "sternal_notch")) return out;
+  const auto axes = fitted_body_axes(model, V, mesh::vertex_normals(V, model.rest.F), params);
+  if (!axes) return out;
+  const Vec3 fitted = model_landmark_position(model, *idx, V, params);
+  if (const auto notch = jugular_notch_on_scan(scan.mesh().V, fitted, axes->up, axes->front))
+    out.push_back({"sternal_notch", *idx, *notch, landmark_weight("sternal_notch")});
   return out;
 }
 
@@ -243,14 +267,15 @@ FitResult register_template(const model::RiggedModel& model, ScanTarget& scan, s
   for (const auto& s : {options.rigid, options.pose, options.shape, options.refine}) stages.push_back(s);
   // Anatomy held where no landmark was given: without landmarks the breasts can slide over the
   // scan (the surface barely changes, the nipples move) and the lower pole stays too high; once
-  // posed, the breast tips and the folds found on the scan hold the nipples and the lowest breast
-  // points for the shape and refine stages.
+  // posed, the breast tips, the folds and the jugular notch found on the scan hold the nipples, the
+  // lowest breast points and the notch for the shape and refine stages.
   const bool hold_nipples = landmarks.size() < 3 && options.anatomical_nipples;
-  // Landmark-free only for now: with the notch and the nipples given, the folds helped both
-  // referee sets but made a synthetic supine case worse (docs/REGISTRATION.md).
-  const bool hold_folds = landmarks.size() < 3 && options.anatomical_lowest_breast &&
+  // Also with a subset such as the notch and the nipples (the fold is refused far below the fitted
+  // lower pole: docs/REGISTRATION.md).
+  const bool hold_folds = options.anatomical_lowest_breast &&
                           !(is_given(landmarks, "lowest_breast_R") && is_given(landmarks, "lowest_breast_L"));
-  if (hold_nipples || hold_folds) {
+  const bool hold_notch = options.anatomical_notch && !is_given(landmarks, "sternal_notch");
+  if (hold_nipples || hold_folds || hold_notch) {
     const auto coarse_end = stages.end() - 2;  // shape and refine follow
     const std::vector<StageOptions> coarse(stages.begin(), coarse_end);
     summary.termination = minimize_stages(*problem_ptr, coarse, params, summary, on_iteration);
@@ -262,6 +287,8 @@ FitResult register_template(const model::RiggedModel& model, ScanTarget& scan, s
         for (auto& t : breast_tip_targets(model, V, params, scan, landmarks)) held.push_back(t);
       if (hold_folds)
         for (auto& t : breast_fold_targets(model, V, params, scan, held)) held.push_back(t);
+      if (hold_notch)
+        for (auto& t : jugular_notch_targets(model, V, params, scan, landmarks)) held.push_back(t);
       summary.anatomical_landmarks = static_cast<int>(held.size() - landmarks.size());
       for (size_t i = landmarks.size(); i < held.size(); ++i) summary.anatomical_landmark_names.push_back(held[i].name);
       problem_ptr = std::make_unique<Problem>(model, scan, options, held);

@@ -36,9 +36,10 @@ DetectedLandmarks landmarks_on_scan(const std::string& scan_name, RegisterResult
     const auto& held = r.fit.summary.anatomical_landmark_names;
     const bool anatomical = std::find(held.begin(), held.end(), p.name) != held.end();
     const bool nipple = p.name == "nipple_R" || p.name == "nipple_L";
-    d.method = !anatomical ? "fitted template, snapped to the scan"
-               : nipple    ? "breast tip on the scan"
-                           : "breast fold on the scan";
+    d.method = !anatomical                  ? "fitted template, snapped to the scan"
+               : nipple                     ? "breast tip on the scan"
+               : p.name == "sternal_notch" ? "jugular notch on the scan"
+                                            : "breast fold on the scan";
     out.landmarks.push_back(d);
   }
   return out;
