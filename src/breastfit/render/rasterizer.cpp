@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <string>
 #include <utility>
@@ -167,6 +168,18 @@ void Rasterizer::draw_mesh(const Points& V, const Triangles& F, const Points& N,
   const Points normals = (style.smooth && N.rows() == 0) ? mesh::vertex_normals(V, F) : Points();
   const Points& vn = N.rows() ? N : normals;
 
+  // Deferred shading: pass 1 finds, per pixel, the nearest triangle of this call (depth test as
+  // in a direct renderer: the first triangle of the smallest depth wins); pass 2 shades each
+  // covered pixel once with that triangle. Same pixels as shading every depth-test winner as it
+  // comes, without shading surfaces that are drawn over later (the back of the torso).
+  struct Tri {
+    Vec3 ng;
+    bool front = false;
+    double area = 0;
+  };
+  std::vector<Tri> tris(static_cast<size_t>(F.rows()));
+  std::vector<std::int32_t> winner(static_cast<size_t>(w_) * h_, -1);
+  int bx0 = w_, by0 = h_, bx1 = -1, by1 = -1;  // bounding box of the pixels won by this call
   for (Eigen::Index t = 0; t < F.rows(); ++t) {
     const Index i0 = F(t, 0), i1 = F(t, 1), i2 = F(t, 2);
     const Projected &p0 = P[i0], &p1 = P[i1], &p2 = P[i2];
@@ -177,9 +190,9 @@ void Rasterizer::draw_mesh(const Points& V, const Triangles& F, const Points& N,
     if (!(ng.squaredNorm() > 0)) continue;
     ng.normalize();
     const Vec3 to_eye = perspective ? Vec3(camera_.eye - v0) : Vec3(-f);
-    const bool front = ng.dot(to_eye) > 0;
     const double area = edge(p0, p1, p2.x, p2.y);
     if (!(std::abs(area) > 1e-12)) continue;
+    tris[static_cast<size_t>(t)] = {ng, ng.dot(to_eye) > 0, area};
 
     const Span xs = pixel_span(std::min({p0.x, p1.x, p2.x}), std::max({p0.x, p1.x, p2.x}), w_);
     const Span ys = pixel_span(std::min({p0.y, p1.y, p2.y}), std::max({p0.y, p1.y, p2.y}), h_);
@@ -189,14 +202,6 @@ void Rasterizer::draw_mesh(const Points& V, const Triangles& F, const Points& N,
     const double w0 = perspective ? 1.0 / p0.depth : 1.0;
     const double w1 = perspective ? 1.0 / p1.depth : 1.0;
     const double w2 = perspective ? 1.0 / p2.depth : 1.0;
-    const Vec3 c0 = base_colour(i0), c1 = base_colour(i1), c2 = base_colour(i2);
-    Vec3 n0 = ng, n1 = ng, n2 = ng;
-    if (style.smooth) {
-      n0 = vn.row(i0);
-      n1 = vn.row(i1);
-      n2 = vn.row(i2);
-    }
-
     for (int y = ys.lo; y <= ys.hi; ++y) {
       const double py = y + 0.5;
       for (int x = xs.lo; x <= xs.hi; ++x) {
@@ -216,17 +221,52 @@ void Rasterizer::draw_mesh(const Points& V, const Triangles& F, const Points& N,
         const double depth = b0 * p0.depth + b1 * p1.depth + b2 * p2.depth;
         const size_t idx = static_cast<size_t>(y) * w_ + x;
         if (!(depth < depth_[idx])) continue;
-        Vec3 n = b0 * n0 + b1 * n1 + b2 * n2;
-        if (!(n.squaredNorm() > 0)) n = ng;
-        n.normalize();
-        if (!front) n = -n;
-        // Interpolated normals may turn away at silhouettes; keep them facing the viewer.
-        const Vec3 view = perspective ? Vec3((camera_.eye - (b0 * v0 + b1 * v1 + b2 * v2)).normalized()) : Vec3(-f);
-        if (n.dot(view) < 0) n = (n - 1.0 * n.dot(view) * view).normalized();
-        const Vec3 base = b0 * c0 + b1 * c1 + b2 * c2;
         depth_[idx] = static_cast<float>(depth);
-        colour_.set(x, y, scale_rgb(shade(base, n, front, light, style)));
+        winner[idx] = static_cast<std::int32_t>(t);
+        bx0 = std::min(bx0, x);
+        bx1 = std::max(bx1, x);
+        by0 = std::min(by0, y);
+        by1 = std::max(by1, y);
       }
+    }
+  }
+
+  for (int y = by0; y <= by1; ++y) {
+    const double py = y + 0.5;
+    for (int x = bx0; x <= bx1; ++x) {
+      const size_t idx = static_cast<size_t>(y) * w_ + x;
+      const std::int32_t t = winner[idx];
+      if (t < 0) continue;
+      const Tri& tri = tris[static_cast<size_t>(t)];
+      const Index i0 = F(t, 0), i1 = F(t, 1), i2 = F(t, 2);
+      const Projected &p0 = P[i0], &p1 = P[i1], &p2 = P[i2];
+      const double px = x + 0.5;
+      double b0 = edge(p1, p2, px, py) / tri.area;
+      double b1 = edge(p2, p0, px, py) / tri.area;
+      double b2 = edge(p0, p1, px, py) / tri.area;
+      b0 *= perspective ? 1.0 / p0.depth : 1.0;
+      b1 *= perspective ? 1.0 / p1.depth : 1.0;
+      b2 *= perspective ? 1.0 / p2.depth : 1.0;
+      const double sum = b0 + b1 + b2;
+      b0 /= sum;
+      b1 /= sum;
+      b2 /= sum;
+      const Vec3& ng = tri.ng;
+      Vec3 n = ng;
+      if (style.smooth) {
+        n = b0 * Vec3(vn.row(i0)) + b1 * Vec3(vn.row(i1)) + b2 * Vec3(vn.row(i2));
+        if (!(n.squaredNorm() > 0)) n = ng;
+      }
+      n.normalize();
+      if (!tri.front) n = -n;
+      // Interpolated normals may turn away at silhouettes; keep them facing the viewer.
+      const Vec3 view = perspective ? Vec3((camera_.eye - (b0 * Vec3(V.row(i0)) + b1 * Vec3(V.row(i1)) +
+                                                             b2 * Vec3(V.row(i2))))
+                                               .normalized())
+                                    : Vec3(-f);
+      if (n.dot(view) < 0) n = (n - 1.0 * n.dot(view) * view).normalized();
+      const Vec3 base = b0 * base_colour(i0) + b1 * base_colour(i1) + b2 * base_colour(i2);
+      colour_.set(x, y, scale_rgb(shade(base, n, tri.front, light, style)));
     }
   }
 }
