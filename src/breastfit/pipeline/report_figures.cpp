@@ -12,6 +12,7 @@
 #include "breastfit/fit/scan_target.h"
 #include "breastfit/mesh/cleanup.h"
 #include "breastfit/mesh/body_frame.h"
+#include "breastfit/mesh/normals.h"
 #include "breastfit/render/torso_overlays.h"
 
 namespace breastfit::pipeline {
@@ -116,45 +117,23 @@ TriangleMesh scan_near_fit(const RegisterResult& r, const Eigen::Matrix4d& body_
   return out;
 }
 
-}  // namespace
-
-void ReportFigureOptions::validate() const {
-  if (size < 64 || size > 8192)
-    throw InvalidInput("ReportFigureOptions: size must be in [64, 8192], got " + std::to_string(size));
-  if (supersample < 1 || supersample > 4)
-    throw InvalidInput("ReportFigureOptions: supersample must be in [1, 4], got " + std::to_string(supersample));
-  if (text_scale < 1 || text_scale > 16)
-    throw InvalidInput("ReportFigureOptions: text_scale must be in [1, 16], got " + std::to_string(text_scale));
-  if (side_size < 64 || side_size > 8192)
-    throw InvalidInput("ReportFigureOptions: side_size must be in [64, 8192], got " + std::to_string(side_size));
-  if (distance_range_mm && (!(*distance_range_mm > 0) || !std::isfinite(*distance_range_mm)))
-    throw InvalidInput("ReportFigureOptions: distance_range_mm must be > 0, got " + std::to_string(*distance_range_mm));
+/// The scan as the overlay figures show it: scan_near_fit, with vertex normals (computed once
+/// here rather than by every view).
+TriangleMesh overlay_scan(const RegisterResult& r) {
+  TriangleMesh scan = r.scan.mesh_mm.num_faces() > 0 && r.fitted_mm.V.rows() > 0
+                          ? scan_near_fit(r, body_frame_of(r).body_to_world)
+                          : r.scan.mesh_mm;
+  if (scan.num_faces() > 0 && !scan.has_normals()) scan.N = mesh::vertex_normals(scan.V, scan.F);
+  return scan;
 }
 
-render::Rgb report_curve_colour(const std::string& name, size_t index) { return render::drawing_colour(name, index); }
-
-Eigen::VectorXd model_to_scan_distances(const RegisterResult& r) {
-  const Points& V = r.fitted_mm.V;
-  Eigen::VectorXd d(V.rows());
-  if (V.rows() == 0) return d;
-  const fit::ScanTarget scan(r.scan.mesh_mm, 0);
-  const bool skip_border = !r.scan.was_point_cloud;
-  for (Eigen::Index i = 0; i < V.rows(); ++i) {
-    const fit::ScanMatch m = scan.closest(V.row(i).transpose());
-    d[i] = skip_border && m.on_boundary ? std::numeric_limits<double>::quiet_NaN() : std::sqrt(m.sq_dist);
-  }
-  return d;
-}
-
-render::Scene overlay_scene(const RegisterResult& r, const ReportFigureOptions& o) {
+render::Scene overlay_scene_with(const RegisterResult& r, const ReportFigureOptions& o, TriangleMesh scan) {
   render::OverlaySizes sizes(o.size);
   sizes.line_width_px *= 1.3;  // drawings are the point of the figure: a little bolder than `render`
   render::Scene scene;
   scene.meshes.emplace_back();
   scene.meshes.back().name = "scan";
-  scene.meshes.back().mesh = r.scan.mesh_mm.num_faces() > 0 && r.fitted_mm.V.rows() > 0
-                                 ? scan_near_fit(r, body_frame_of(r).body_to_world)
-                                 : r.scan.mesh_mm;
+  scene.meshes.back().mesh = std::move(scan);
 
   bool any_off_scan = false;
   for (size_t k = 0; k < r.drawings_on_scan.size(); ++k) {
@@ -189,6 +168,41 @@ render::Scene overlay_scene(const RegisterResult& r, const ReportFigureOptions& 
   for (const auto& p : r.model_landmarks_mm.points) scene.points.push_back(render::landmark_point(p.name, p.position, sizes));
   return scene;
 }
+
+}  // namespace
+
+void ReportFigureOptions::validate() const {
+  if (size < 64 || size > 8192)
+    throw InvalidInput("ReportFigureOptions: size must be in [64, 8192], got " + std::to_string(size));
+  if (supersample < 1 || supersample > 4)
+    throw InvalidInput("ReportFigureOptions: supersample must be in [1, 4], got " + std::to_string(supersample));
+  if (text_scale < 1 || text_scale > 16)
+    throw InvalidInput("ReportFigureOptions: text_scale must be in [1, 16], got " + std::to_string(text_scale));
+  if (side_size < 64 || side_size > 8192)
+    throw InvalidInput("ReportFigureOptions: side_size must be in [64, 8192], got " + std::to_string(side_size));
+  if (distance_range_mm && (!(*distance_range_mm > 0) || !std::isfinite(*distance_range_mm)))
+    throw InvalidInput("ReportFigureOptions: distance_range_mm must be > 0, got " + std::to_string(*distance_range_mm));
+}
+
+render::Rgb report_curve_colour(const std::string& name, size_t index) { return render::drawing_colour(name, index); }
+
+Eigen::VectorXd model_to_scan_distances(const RegisterResult& r) {
+  const Points& V = r.fitted_mm.V;
+  Eigen::VectorXd d(V.rows());
+  if (V.rows() == 0) return d;
+  const fit::ScanTarget scan(r.scan.mesh_mm, 0);
+  const bool skip_border = !r.scan.was_point_cloud;
+  for (Eigen::Index i = 0; i < V.rows(); ++i) {
+    const fit::ScanMatch m = scan.closest(V.row(i).transpose());
+    d[i] = skip_border && m.on_boundary ? std::numeric_limits<double>::quiet_NaN() : std::sqrt(m.sq_dist);
+  }
+  return d;
+}
+
+render::Scene overlay_scene(const RegisterResult& r, const ReportFigureOptions& o) {
+  return overlay_scene_with(r, o, overlay_scan(r));
+}
+
 
 double distance_scale_mm(const Eigen::VectorXd& d) {
   std::vector<double> v;
@@ -226,11 +240,12 @@ ReportFigures render_report_figures(const RegisterResult& r, const ReportFigureO
   out.body_frame = frame.description;
   out.body_to_world = frame.body_to_world;
 
-  const render::Scene scene = overlay_scene(r, o);
+  const TriangleMesh scan = overlay_scan(r);
+  const render::Scene scene = overlay_scene_with(r, o, scan);
   ReportFigureOptions side = o;  // the four side views are shown two to a row: smaller images
   side.size = o.side_size;
   side.text_scale = std::max(1, o.text_scale / 2);
-  const render::Scene side_scene = overlay_scene(r, side);
+  const render::Scene side_scene = overlay_scene_with(r, side, scan);
 
   struct Spec {
     const char* id;
