@@ -237,6 +237,15 @@ TEST(ReportHtml, ContainsTheNumbersOfTheResult) {
   for (size_t i = 0; i < r.landmarks.names.size(); ++i)
     EXPECT_TRUE(has("<td>" + r.landmarks.names[i] + "</td><td class=\"n\">" + fixed(r.landmarks.distances_mm[i], 1) + "</td>"))
         << r.landmarks.names[i];
+  // Each landmark's check tolerance beside its error (30 mm for the mid-axillary line landmarks).
+  ASSERT_FALSE(r.fit.summary.landmark_checks.empty());
+  for (const auto& c : r.fit.summary.landmark_checks) {
+    const size_t at = h.find("<td>" + c.name + "</td>");
+    ASSERT_NE(at, std::string::npos) << c.name;
+    EXPECT_NE(h.substr(at, h.find("</tr>", at) - at).find("<td class=\"n\">" + fixed(c.tolerance_mm, 0) + "</td>"),
+              std::string::npos)
+        << c.name;
+  }
   // Each curve with its numbers and confidence.
   ASSERT_FALSE(r.drawings_on_scan.empty());
   for (const auto& c : r.drawings_on_scan) {
