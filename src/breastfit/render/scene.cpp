@@ -286,7 +286,7 @@ LegendLayout legend_layout(const std::vector<const ScenePolyline*>& entries, con
   }
   // The caption shares the last row when it fits right of the last entry.
   const int caption_w = o.show_orientation ? text_size(view_caption(o), s).width + 2 * pad : 0;
-  const int caption_rows = caption_w > 0 && x - gap + gap + caption_w > right ? 1 : 0;
+  const int caption_rows = caption_w > 0 && x + caption_w > right ? 1 : 0;  // x: after the last entry and a gap
   const int rows = row + 1;
   const int box_h = rows * line_h - 2 * s;
   const int y0 = o.height - pad - box_h - caption_rows * line_h;
