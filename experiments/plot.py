@@ -94,7 +94,7 @@ def fig4(j, out):
             # not converged / failed runs
             for e in s:
                 g = get(e, pose) or {}
-                bad = (g.get("n_not_converged") or 0) + (g.get("n_error") or 0)
+                bad = (g.get("n_not_converged") or 0) + (g.get("n_not_usable") or 0) + (g.get("n_error") or 0)
                 if bad:
                     yv = get(e, pose, "truth" if truth else "paper", metric, "mae")
                     if yv is not None:

@@ -17,6 +17,8 @@
 #include "breastfit/model/gltf_io.h"
 #include "breastfit/model/template_library.h"
 #include "breastfit/mesh/body_frame.h"
+#include "breastfit/fit/orientation_search.h"
+#include "breastfit/pipeline/register_scan.h"
 #include "breastfit/render/scene.h"
 #include "breastfit/render/torso_overlays.h"
 #include "breastfit/template/default_template.h"
@@ -34,6 +36,7 @@ struct RenderArgs {
   std::string template_file;
   bool use_template = false;
   std::string landmarks;
+  std::string placed;
   std::string drawings;
   std::string view = "front";
   int size = 1024;
@@ -64,9 +67,9 @@ using render::add_curve;
 using render::landmark_point;
 using render::OverlaySizes;
 
-/// Adds the landmarks of a file (positions converted to `scale_to_scene` × mm-or-declared units).
-void add_landmarks(render::Scene& scene, mesh::NamedPositions& named, const std::string& path,
-                   std::optional<mesh::Units> scene_units, const OverlaySizes& sizes) {
+/// The landmarks of a file in the scene's units (declared units converted; undeclared: taken as
+/// the scene's units).
+std::vector<NamedPoint> read_scene_landmarks(const std::string& path, std::optional<mesh::Units> scene_units) {
   io::LandmarkReadOptions opt;
   opt.require_known_names = false;
   LandmarkSet lm = read_landmarks_warning(path, opt);
@@ -76,9 +79,20 @@ void add_landmarks(render::Scene& scene, mesh::NamedPositions& named, const std:
     const double declared_mm = *lm.declared_units == "m" ? 1000.0 : 1.0;
     factor = declared_mm / mesh::to_mm_factor(*scene_units);
   }
-  for (const NamedPoint& p : lm.points) {
-    scene.points.push_back(landmark_point(p.name, factor * p.position, sizes));
-    named[p.name] = factor * p.position;
+  for (NamedPoint& p : lm.points) p.position *= factor;
+  return lm.points;
+}
+
+/// Adds the landmarks of --landmarks (red, labelled) and of --placed (dark, joined to the
+/// same-named --landmarks point by a line).
+void add_landmarks(render::Scene& scene, mesh::NamedPositions& named, const RenderArgs& a,
+                   std::optional<mesh::Units> scene_units, const OverlaySizes& sizes) {
+  std::vector<NamedPoint> fitted;
+  if (!a.landmarks.empty()) fitted = read_scene_landmarks(a.landmarks, scene_units);
+  if (!a.placed.empty()) render::add_placed_landmarks(scene, read_scene_landmarks(a.placed, scene_units), fitted, sizes);
+  for (const NamedPoint& p : fitted) {
+    scene.points.push_back(landmark_point(p.name, p.position, sizes));
+    named[p.name] = p.position;
   }
 }
 
@@ -119,6 +133,43 @@ model::RiggedModel default_template(std::string& what) {
   return templ::build_default_template();
 }
 
+/// The body frame of a torso scan without landmarks, from its geometry: the landmark-free
+/// orientation search of `register` (the default template fitted in every turn of the shape's
+/// axes, fit/orientation_search.h). nullopt when the scan is not a plausible torso or the best
+/// orientation is not clearly better than a different one (then front and back are not known).
+std::optional<mesh::BodyFrame> body_frame_from_geometry(const TriangleMesh& mesh, mesh::Units units,
+                                                        std::string& note) {
+  try {
+    const fit::FitOptions options;
+    pipeline::PreparedTarget target = pipeline::prepare_target(mesh, "mesh", units, options);
+    std::string what;
+    const model::RiggedModel model = default_template(what);
+    const fit::OrientationSearch search = fit::search_orientation(model, *target.target, options);
+    char margin[32];
+    std::snprintf(margin, sizeof margin, "%.0f", 100 * search.margin);
+    if (search.hypotheses.empty() || search.margin < options.orientation_min_margin) {
+      note = "orientation unknown: the template fits '" + search.runner_up + "' almost as well as the best turn (" +
+             margin + " % margin)";
+      return std::nullopt;
+    }
+    // The template is in the body frame: its placement on the scan is body → scan (mm → file units).
+    const double to_file = 1.0 / mesh::to_mm_factor(units);
+    mesh::BodyFrame bf;
+    bf.body_to_world.topLeftCorner<3, 3>() = search.params.global.rotation.toRotationMatrix();
+    bf.body_to_world.topRightCorner<3, 1>() = to_file * search.params.global.translation;
+    bf.source = mesh::BodyFrameSource::PrincipalAxes;
+    bf.description = "the scan's geometry (template orientation search: '" + search.hypotheses.front().name + "', " +
+                     margin + " % better than '" + search.runner_up + "')";
+    return bf;
+  } catch (const InvalidInput& e) {  // not a plausible torso scan (size, shape)
+    note = std::string("orientation unknown: ") + e.what();
+    return std::nullopt;
+  } catch (const IoError& e) {  // no template to search with
+    note = std::string("orientation unknown: ") + e.what();
+    return std::nullopt;
+  }
+}
+
 void run_render(const RenderArgs& a) {
   if (a.out.empty()) throw InvalidInput("render: --out is required");
   if (a.size < 16 || a.size > 8192) throw InvalidInput("render: --size must be in [16, 8192], got " + std::to_string(a.size));
@@ -138,6 +189,8 @@ void run_render(const RenderArgs& a) {
   std::string what;
   Eigen::Matrix4d body_to_world = Eigen::Matrix4d::Identity();
   std::string frame_note = "body frame (identity)";
+  bool orientation_known = true;
+  std::optional<mesh::Units> mesh_units;
 
   if (a.use_template) {
     model::RiggedModel model;
@@ -163,7 +216,7 @@ void run_render(const RenderArgs& a) {
       named[l.name] = p;
     }
     // The template is in millimetres, in the body frame.
-    if (!a.landmarks.empty()) add_landmarks(scene, named, a.landmarks, mesh::Units::Millimetres, sizes);
+    add_landmarks(scene, named, a, mesh::Units::Millimetres, sizes);
     if (!a.drawings.empty()) add_drawings(scene, a.drawings, mesh::Units::Millimetres, sizes);
   } else {
     TriangleMesh mesh = io::read_mesh(a.mesh);
@@ -178,11 +231,12 @@ void run_render(const RenderArgs& a) {
         units = mesh::Units::Millimetres;
       }
     }
+    mesh_units = units;
     scene.meshes.emplace_back();
     scene.meshes.back().name = what;
     scene.meshes.back().mesh = std::move(mesh);
     scene.meshes.back().wireframe = a.wireframe;
-    if (!a.landmarks.empty()) add_landmarks(scene, named, a.landmarks, units, sizes);
+    add_landmarks(scene, named, a, units, sizes);
     if (!a.drawings.empty()) add_drawings(scene, a.drawings, units, sizes);
   }
 
@@ -194,9 +248,17 @@ void run_render(const RenderArgs& a) {
     if (!bf && frame_mode == "landmarks")
       throw InvalidInput("render: --frame landmarks needs sternal_notch/xiphoid (or acromions with breasts) "
                          "and a left/right pair (acromion, midaxillary, pectoral_insertion, nipple or lowest_breast)");
-    if (!bf) bf = mesh::body_frame_from_principal_axes(scene.meshes.front().mesh);
+    // No landmark frame: the scan's geometry (auto), else the principal axes, whose front/back
+    // and up/down are guesses — the views are then captioned as of unknown orientation.
+    std::string unknown;
+    if (!bf && frame_mode == "estimate" && mesh_units) bf = body_frame_from_geometry(scene.meshes.front().mesh, *mesh_units, unknown);
+    if (!bf) {
+      bf = mesh::body_frame_from_principal_axes(scene.meshes.front().mesh);
+      orientation_known = false;
+      if (unknown.empty()) unknown = "orientation unknown: the principal axes do not tell front from back";
+    }
     body_to_world = bf->body_to_world;
-    frame_note = "body frame from " + bf->description;
+    frame_note = "body frame from " + bf->description + (orientation_known ? "" : "; " + unknown);
   }
 
   render::RenderOptions opt;
@@ -208,6 +270,7 @@ void run_render(const RenderArgs& a) {
   for (render::View v : views) {
     opt.view = v;
     opt.title = a.title.empty() ? what : a.title;
+    if (!orientation_known) opt.view_caption = "view: orientation unknown";
     const render::Image img = render::render_scene(scene, opt);
     const fs::path path = output_path(a.out, v, views.size() == 1);
     if (path.has_parent_path()) {
@@ -233,15 +296,21 @@ void register_render(CLI::App& app, int& exit_code) {
                               "mesh; without FILE the built-in default template")
                   ->expected(0, 1);
   sub->add_option("--landmarks,-l", args->landmarks, "Landmarks to draw (.mrk.json, .json, .csv)");
+  sub->add_option("--placed", args->placed,
+                  "Landmarks a person placed (e.g. register's input), drawn dark beside --landmarks (e.g. "
+                  "register's landmarks.mrk.json, red) with a line between same-named points");
   sub->add_option("--drawings", args->drawings, "Curves to draw (Slicer .mrk.json)");
-  sub->add_option("--view", args->view, "front, side, oblique, back, top or all (= front, side, oblique)")
+  sub->add_option("--view", args->view,
+                  "front, side (the patient's right), side-left, oblique (front-right), oblique-left, back, top, or "
+                  "all (= front, side, side-left, oblique, oblique-left)")
       ->capture_default_str();
   sub->add_option("--size", args->size, "Image width and height in pixels")->capture_default_str();
   sub->add_option("--title", args->title, "Caption line (default: the input's file name)");
   sub->add_option("--out,-o", args->out, "Output PNG, or prefix: PREFIX_<view>.png")->required();
   sub->add_option("--frame", args->frame,
-                  "View frame: auto (template: identity; mesh: landmarks, else principal axes), landmarks, "
-                  "axes, identity")
+                  "View frame: auto (template: identity; mesh: landmarks, else the scan's geometry by the "
+                  "template orientation search, else 'orientation unknown'), landmarks, axes (principal axes: "
+                  "views captioned 'orientation unknown'), identity")
       ->capture_default_str();
   sub->add_option("--units", args->units, "Mesh units for declared-unit markups: auto, mm or m")->capture_default_str();
   sub->add_flag("--wireframe", args->wireframe, "Overlay the mesh edges");

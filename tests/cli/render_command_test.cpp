@@ -64,14 +64,19 @@ double mean_red_x(const render::Image& img, int* count) {
   return n ? sx / n : -1;
 }
 
-TEST(RenderCommand, MeshWithLandmarksAllViews) {
-  if (test::cli_path().empty()) GTEST_SKIP() << "CLI not built";
-  const fs::path dir = test::temp_dir();
+/// Writes DIR/torso.ply (the ellipsoid) and DIR/lm.json, landmarks on it in its scanner frame
+/// (x = patient left, y = up, z = anterior; nipple_R on the patient's right).
+void write_torso_with_landmarks(const fs::path& dir) {
   io::write_mesh(dir / "torso.ply", ellipsoid());
-  // Scanner frame: x = patient left, y = up, z = anterior. One landmark on the patient's right.
   write_text(dir / "lm.json",
              R"({"sternal_notch": [0, 200, 60], "xiphoid": [0, 0, 100],)"
              R"( "acromion_R": [-150, 150, 0], "acromion_L": [150, 150, 0], "nipple_R": [-80, 50, 85]})");
+}
+
+TEST(RenderCommand, MeshWithLandmarksAllViews) {
+  if (test::cli_path().empty()) GTEST_SKIP() << "CLI not built";
+  const fs::path dir = test::temp_dir();
+  write_torso_with_landmarks(dir);
   std::string out;
   const int code = test::run_cli("render '" + (dir / "torso.ply").string() + "' --landmarks '" +
                                      (dir / "lm.json").string() + "' --view all --size 256 --title T --out '" +
@@ -79,7 +84,7 @@ TEST(RenderCommand, MeshWithLandmarksAllViews) {
                                  &out);
   ASSERT_EQ(code, 0) << out;
   EXPECT_NE(out.find("landmarks"), std::string::npos) << out;  // frame from the landmarks
-  for (const char* v : {"front", "side", "oblique"}) {
+  for (const char* v : {"front", "side", "side-left", "oblique", "oblique-left"}) {
     const fs::path png = dir / (std::string("shot_") + v + ".png");
     ASSERT_TRUE(fs::exists(png)) << png;
     const render::Image img = render::read_png(png);
@@ -119,6 +124,71 @@ TEST(RenderCommand, SingleViewExactFileAndErrors) {
             4)
       << out;
   EXPECT_EQ(test::run_cli("render '" + (dir / "torso.ply").string() + "'", &out), 2) << out;
+}
+
+/// Mean absolute difference of two images of the same size (0–255).
+double image_difference(const render::Image& a, const render::Image& b) {
+  double sum = 0;
+  for (size_t i = 0; i < a.bytes().size(); ++i) sum += std::abs(int(a.bytes()[i]) - int(b.bytes()[i]));
+  return sum / static_cast<double>(a.bytes().size());
+}
+
+TEST(RenderCommand, WithoutLandmarksTheScanIsOrientedFromItsGeometryOrTheViewIsCaptionedUnknown) {
+  if (test::cli_path().empty()) GTEST_SKIP() << "CLI not built";
+  const fs::path dir = test::temp_dir();
+  std::string out;
+  ASSERT_EQ(test::run_cli("synth --quiet --seed 7 --out '" + (dir / "case").string() + "'", &out), 0) << out;
+  const std::string scan = "'" + (dir / "case" / "scan.ply").string() + "'";
+  const std::string lm = "'" + (dir / "case" / "landmarks.mrk.json").string() + "'";
+  // The truth: front and back views oriented by the landmarks.
+  for (const char* v : {"front", "back"})
+    ASSERT_EQ(test::run_cli("render " + scan + " --landmarks " + lm + " --no-labels --view " + v +
+                                " --size 128 --out '" + (dir / (std::string("lm_") + v + ".png")).string() + "'",
+                            &out),
+              0)
+        << out;
+  // Without landmarks: the template's orientation search finds the front (not the back).
+  ASSERT_EQ(test::run_cli("render " + scan + " --size 128 --out '" + (dir / "geo.png").string() + "'", &out), 0) << out;
+  EXPECT_NE(out.find("the scan's geometry"), std::string::npos) << out;
+  EXPECT_EQ(out.find("orientation unknown"), std::string::npos) << out;
+  const render::Image geo = render::read_png(dir / "geo.png");
+  const double to_front = image_difference(geo, render::read_png(dir / "lm_front.png"));
+  const double to_back = image_difference(geo, render::read_png(dir / "lm_back.png"));
+  EXPECT_LT(to_front, 0.5 * to_back) << to_front << " " << to_back;
+  // Principal axes alone cannot tell front from back: said in the output and on the image.
+  ASSERT_EQ(test::run_cli("render " + scan + " --frame axes --size 128 --out '" + (dir / "axes.png").string() + "'", &out),
+            0)
+      << out;
+  EXPECT_NE(out.find("orientation unknown"), std::string::npos) << out;
+  EXPECT_NE(image_difference(render::read_png(dir / "axes.png"), geo), 0.0);  // the caption at least differs
+}
+
+TEST(RenderCommand, PlacedLandmarksAreDrawnBesideTheFittedOnes) {
+  if (test::cli_path().empty()) GTEST_SKIP() << "CLI not built";
+  const fs::path dir = test::temp_dir();
+  write_torso_with_landmarks(dir);  // lm.json: the fitted landmarks
+  write_text(dir / "placed.json", R"({"nipple_R": [-40, 20, 95], "xiphoid": [20, -30, 98]})");
+  std::string out;
+  const std::string base = "render '" + (dir / "torso.ply").string() + "' --landmarks '" + (dir / "lm.json").string() +
+                           "' --no-labels --size 256 --out '";
+  ASSERT_EQ(test::run_cli(base + (dir / "fitted.png").string() + "'", &out), 0) << out;
+  ASSERT_EQ(test::run_cli(base + (dir / "both.png").string() + "' --placed '" + (dir / "placed.json").string() + "'", &out),
+            0)
+      << out;
+  auto dark = [](const render::Image& img) {
+    int n = 0;
+    for (int y = 0; y < img.height(); ++y)
+      for (int x = 0; x < img.width(); ++x) {
+        const render::Rgb c = img.at(x, y);
+        n += c.r < 50 && c.g < 50 && c.b < 50;
+      }
+    return n;
+  };
+  // Dark discs and joining lines (and the legend entry) appear; the fitted landmarks stay red.
+  EXPECT_GT(dark(render::read_png(dir / "both.png")), dark(render::read_png(dir / "fitted.png")) + 60);
+  int n = 0;
+  mean_red_x(render::read_png(dir / "both.png"), &n);
+  EXPECT_GT(n, 20);
 }
 
 TEST(RenderCommand, DrawingsInMetresAreDrawnOnAMillimetreMesh) {

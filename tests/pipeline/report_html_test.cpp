@@ -30,11 +30,21 @@ std::string fixed(double v, int decimals) {
   return buf;
 }
 
+ReportFigureOptions small_options() {
+  ReportFigureOptions o;
+  o.size = 320;
+  o.side_size = 160;
+  return o;
+}
+
+/// The figure width in the report: the front and distance views full size, the others smaller.
+std::string width_of(size_t figure, int full, int side) {
+  return std::to_string(figure == 0 || figure == 5 ? full : side);
+}
+
 const pipeline::ReportFigures& figures() {
   static const pipeline::ReportFigures f = [] {
-    ReportFigureOptions o;
-    o.size = 320;
-    return pipeline::render_report_figures(test::report_test_result(), o);
+    return pipeline::render_report_figures(test::report_test_result(), small_options());
   }();
   return f;
 }
@@ -136,7 +146,7 @@ TEST(ReportHtml, IsSelfContained) {
   EXPECT_EQ(h.find("url("), std::string::npos);
   EXPECT_EQ(h.find("@import"), std::string::npos);
   const auto srcs = attribute_values(h, "src");
-  EXPECT_EQ(srcs.size(), 3u);
+  EXPECT_EQ(srcs.size(), 6u);
   for (const auto& s : srcs) EXPECT_EQ(s.rfind("data:image/png;base64,", 0), 0u) << s.substr(0, 60);
   for (const auto& href : attribute_values(h, "href")) EXPECT_EQ(href.rfind('#', 0), 0u) << href;
   EXPECT_EQ(h.rfind("<!DOCTYPE html>", 0), 0u);
@@ -158,11 +168,20 @@ TEST(ReportHtml, EmbedsTheFiguresAsPngsOfTheRightSize) {
     const fs::path p = dir / ("fig" + std::to_string(i) + ".png");
     std::ofstream(p, std::ios::binary).write(reinterpret_cast<const char*>(png.data()), static_cast<std::streamsize>(png.size()));
     const render::Image img = render::read_png(p);
-    EXPECT_EQ(img.width(), 320);
-    EXPECT_EQ(img.height(), 320);
+    EXPECT_EQ(std::to_string(img.width()), width_of(i, 320, 160)) << i;
+    EXPECT_EQ(img.height(), img.width());
     EXPECT_EQ(img.bytes(), figures().figures[i].image.bytes()) << i;
   }
-  for (const auto& w : attribute_values(html(), "width")) EXPECT_EQ(w, "320");
+  const auto widths = attribute_values(html(), "width");
+  ASSERT_EQ(widths.size(), 6u);
+  for (size_t i = 0; i < widths.size(); ++i) EXPECT_EQ(widths[i], width_of(i, 320, 160)) << i;
+  // The four side views two to a row, in one grid between the front and the distance figures.
+  const size_t grid = html().find("<div class=\"grid\">");
+  ASSERT_NE(grid, std::string::npos);
+  EXPECT_LT(html().find("id=\"fig-front\""), grid);
+  EXPECT_LT(grid, html().find("id=\"fig-oblique-right\""));
+  EXPECT_LT(html().find("id=\"fig-side-left\""), html().find("</div>", grid));
+  EXPECT_GT(html().find("id=\"fig-distance\""), html().find("</div>", grid));
 }
 
 TEST(ReportHtml, NamesTheScanTemplateAndUnits) {
@@ -218,6 +237,15 @@ TEST(ReportHtml, ContainsTheNumbersOfTheResult) {
   for (size_t i = 0; i < r.landmarks.names.size(); ++i)
     EXPECT_TRUE(has("<td>" + r.landmarks.names[i] + "</td><td class=\"n\">" + fixed(r.landmarks.distances_mm[i], 1) + "</td>"))
         << r.landmarks.names[i];
+  // Each landmark's check tolerance beside its error (30 mm for the mid-axillary line landmarks).
+  ASSERT_FALSE(r.fit.summary.landmark_checks.empty());
+  for (const auto& c : r.fit.summary.landmark_checks) {
+    const size_t at = h.find("<td>" + c.name + "</td>");
+    ASSERT_NE(at, std::string::npos) << c.name;
+    EXPECT_NE(h.substr(at, h.find("</tr>", at) - at).find("<td class=\"n\">" + fixed(c.tolerance_mm, 0) + "</td>"),
+              std::string::npos)
+        << c.name;
+  }
   // Each curve with its numbers and confidence.
   ASSERT_FALSE(r.drawings_on_scan.empty());
   for (const auto& c : r.drawings_on_scan) {
@@ -247,12 +275,70 @@ TEST(ReportHtml, ContainsTheNumbersOfTheResult) {
   EXPECT_TRUE(has("drawings.ply, drawings.obj"));
 }
 
+TEST(ReportHtml, ShowsTheProvenanceReadably) {
+  pipeline::RegisterResult r = test::report_test_result();
+  EXPECT_NE(pipeline::report_html(r, "t", figures()).find("Not recorded for this registration"), std::string::npos);
+  pipeline::Provenance p;
+  p.version = "0.1.0 (git abc1234)";
+  p.inputs = {{"scan", "cases/a <b>/scan.ply", std::string(64, 'a')},
+              {"landmarks", "cases/a/landmarks.mrk.json", std::string(64, 'b')},
+              {"template", "/share/default_torso.glb", std::string(64, 'c')}};
+  p.options.weights.set_lambda("landmarks", 12.5);
+  p.started_utc = "2026-11-24T06:10:58Z";
+  p.command_line = "breastfit register 'cases/a <b>/scan.ply' -o out";
+  r.provenance = p;
+  const std::string h = pipeline::report_html(r, "t", figures());
+  auto has = [&](const std::string& s) { return h.find(s) != std::string::npos; };
+  EXPECT_TRUE(has("<h2 id=\"provenance\">Traceability</h2>"));
+  EXPECT_TRUE(has("<th>breastfit</th><td>0.1.0 (git abc1234)</td>"));
+  EXPECT_TRUE(has("<th>scan</th><td><code>cases/a &lt;b&gt;/scan.ply</code>"));
+  for (char c : {'a', 'b', 'c'}) EXPECT_TRUE(has("<code class=\"hash\">" + std::string(64, c) + "</code>")) << c;
+  EXPECT_TRUE(has("<th>template</th><td><code>/share/default_torso.glb</code>"));
+  // The run rows in their own tbody (the part that differs from run to run).
+  const size_t run = h.find("<tbody class=\"run\">");
+  ASSERT_NE(run, std::string::npos);
+  const std::string run_rows = h.substr(run, h.find("</tbody>", run) - run);
+  EXPECT_NE(run_rows.find("2026-11-24T06:10:58Z"), std::string::npos);
+  EXPECT_NE(run_rows.find("breastfit register &#39;cases/a &lt;b&gt;/scan.ply&#39; -o out"), std::string::npos);
+  // The effective options, collapsed (details), as the --config JSON.
+  const size_t details = h.find("<details>");
+  ASSERT_NE(details, std::string::npos);
+  EXPECT_GT(details, h.find("id=\"provenance\""));
+  const std::string opts = h.substr(details, h.find("</details>", details) - details);
+  EXPECT_NE(opts.find("&quot;lambda_landmarks&quot;: 12.5"), std::string::npos) << opts.substr(0, 400);
+  EXPECT_NE(opts.find("&quot;weights&quot;"), std::string::npos);
+}
+
+TEST(ReportHtml, SaysConvergedWhenTheSolverConvergedAndTheCapAsADetail) {
+  pipeline::RegisterResult r = test::report_test_result();
+  auto solver_row = [&](const pipeline::RegisterResult& res) {
+    const std::string h = pipeline::report_html(res, "t", figures());
+    const size_t at = h.find("<th>Solver</th>");
+    EXPECT_NE(at, std::string::npos);
+    return h.substr(at, h.find("</tr>", at) - at);
+  };
+  r.fit.summary.termination = fit::Termination::FunctionTolerance;
+  std::string row = solver_row(r);
+  EXPECT_NE(row.find("<b>converged</b> (function_tolerance)"), std::string::npos) << row;
+  r.fit.summary.termination = fit::Termination::IterationCap;
+  ASSERT_FALSE(r.fit.summary.iterations.empty());
+  r.fit.summary.iterations.back().energy_before = 10.0;
+  r.fit.summary.iterations.back().energy_after = 9.99;
+  row = solver_row(r);
+  EXPECT_EQ(row.find("converged</b>"), std::string::npos) << row;
+  EXPECT_NE(row.find("<b>finished its iteration schedule</b> (its last step changed the energy by -0.10 %)"),
+            std::string::npos)
+      << row;
+  // The stages with how each ended, as a detail.
+  for (const auto& st : r.fit.summary.stages)
+    EXPECT_NE(row.find(st.name + " " + std::to_string(st.iterations) + " ("), std::string::npos) << st.name << row;
+}
+
 TEST(ReportHtml, IsDeterministic) {
   EXPECT_EQ(pipeline::report_html(warned_result(), "default torso", figures()), html());
   // Rendering the figures again gives the same document.
-  ReportFigureOptions o;
-  o.size = 320;
-  EXPECT_EQ(pipeline::report_html(warned_result(), "default torso", pipeline::render_report_figures(warned_result(), o)),
+  EXPECT_EQ(pipeline::report_html(warned_result(), "default torso",
+                                  pipeline::render_report_figures(warned_result(), small_options())),
             html());
 }
 
@@ -264,8 +350,10 @@ TEST(ReportHtml, WriteRendersAtTheDefaultSizeAndRegisterOutputsIncludeIt) {
   std::stringstream ss;
   ss << f.rdbuf();
   const std::string h = ss.str();
-  EXPECT_EQ(attribute_values(h, "src").size(), 3u);
-  for (const auto& w : attribute_values(h, "width")) EXPECT_EQ(w, "900");
+  EXPECT_EQ(attribute_values(h, "src").size(), 6u);
+  const auto widths = attribute_values(h, "width");
+  ASSERT_EQ(widths.size(), 6u);
+  for (size_t i = 0; i < widths.size(); ++i) EXPECT_EQ(widths[i], width_of(i, 900, 450)) << i;
   EXPECT_NE(h.find(test::report_test_model().name), std::string::npos);
   // Without the report: an old one is removed (it would describe another run).
   pipeline::RegisterOutputOptions no_html;

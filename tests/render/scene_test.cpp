@@ -195,6 +195,60 @@ TEST(Scene, TitleAndLabelsAreDrawn) {
   EXPECT_GT(dark_in(with_label, 0, 0, 256, 256), dark_in(plain, 0, 0, 256, 256) + 30);
 }
 
+TEST(Scene, TheLegendFlowsAlongTheBottomAndNeverCoversTheScene) {
+  // A sphere that fills the frame and a legend with many long entries: the framing keeps the
+  // legend's box free of the sphere's silhouette, in every view and size.
+  for (int size : {256, 512})
+    for (View v : {View::Front, View::Side, View::ObliqueLeft}) {
+      Scene s = sphere_scene({});
+      for (const char* name : {"breast_contour_R", "breast_contour_L", "imf_R", "imf_L", "sternum",
+                               "pale: no scan under it", "placed landmark (line to fitted)"}) {
+        ScenePolyline l;
+        l.name = name;
+        l.points.resize(2, 3);
+        l.points << -50, -101, 0, 50, -101, 0;
+        s.polylines.push_back(l);
+      }
+      RenderOptions o = small(v);
+      o.width = o.height = size;
+      o.show_orientation = true;
+      o.title = "a title";
+      const auto box = legend_box(s, o);
+      ASSERT_TRUE(box);
+      EXPECT_GE(box->min().x(), 0);
+      EXPECT_LE(box->max().x(), size);
+      EXPECT_LE(box->max().y(), size);
+      RenderOptions bare = o;
+      bare.camera = scene_camera(s, o);
+      bare.show_legend = bare.show_orientation = false;
+      bare.title.clear();
+      const Image silhouette = render_scene(s, bare);
+      int inside = 0, any = 0;
+      for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x) {
+          const bool body = !(silhouette.at(x, y) == o.background);
+          any += body;
+          inside += body && box->contains(Eigen::Vector2i(x, y)) && x < box->max().x() && y < box->max().y();
+        }
+      EXPECT_EQ(inside, 0) << view_name(v) << " " << size;
+      EXPECT_GT(any, size * size / 5);  // the sphere still fills much of the image
+    }
+  // No named polyline: no legend box, no space kept.
+  EXPECT_FALSE(legend_box(sphere_scene({}), small()));
+}
+
+TEST(Scene, TheViewCaptionCanSayTheOrientationIsUnknown) {
+  const Scene s = sphere_scene({});
+  RenderOptions o = small();
+  o.show_orientation = true;
+  const Image front = render_scene(s, o);
+  o.view_caption = "view: orientation unknown";
+  const Image unknown = render_scene(s, o);
+  EXPECT_NE(front.bytes(), unknown.bytes());
+  o.view_caption = std::string(view_name(View::Front)) + " view";
+  EXPECT_EQ(render_scene(s, o).bytes(), front.bytes());
+}
+
 TEST(Scene, PerspectiveAndWorldSizedPoints) {
   Scene s = sphere_scene({Vec3(0, -100, 0)});
   RenderOptions o = small(View::Front);
@@ -223,11 +277,6 @@ TEST(Scene, InvalidInput) {
   o = small();
   o.margin = 0.6;
   EXPECT_THROW(render_scene(sphere_scene({}), o), InvalidInput);
-}
-
-TEST(Scene, PaletteCycles) {
-  EXPECT_EQ(palette_colour(0), palette_colour(8));
-  EXPECT_NE(palette_colour(0), palette_colour(1));
 }
 
 }  // namespace

@@ -23,6 +23,9 @@ TEST(View, BodyFrameDirections) {
   EXPECT_NEAR(oblique.forward.dot(front.forward), std::sqrt(0.5), 1e-12);
   EXPECT_NEAR(oblique.forward.dot(side.forward), std::sqrt(0.5), 1e-12);
   EXPECT_TRUE(view_directions(View::Back).forward.isApprox(Vec3(0, -1, 0)));
+  EXPECT_TRUE(view_directions(View::SideLeft).forward.isApprox(Vec3(-1, 0, 0)));  // camera at the patient's left
+  EXPECT_TRUE(view_directions(View::ObliqueLeft).forward.isApprox(Vec3(-1, 1, 0).normalized()));
+  EXPECT_TRUE(view_directions(View::SideLeft).up.isApprox(Vec3(0, 0, 1)));
   const ViewDirections top = view_directions(View::Top);
   EXPECT_TRUE(top.forward.isApprox(Vec3(0, 0, -1)));
   EXPECT_TRUE(top.up.isApprox(Vec3(0, -1, 0)));  // anterior up in the image
@@ -45,7 +48,7 @@ TEST(View, FollowsTheBodyToWorldRotation) {
   const Eigen::Matrix3d R = Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()).toRotationMatrix();
   T.topLeftCorner<3, 3>() = 2.5 * R;  // scale is ignored
   T.block<3, 1>(0, 3) = Vec3(10, 20, 30);
-  for (View v : {View::Front, View::Side, View::Oblique, View::Back, View::Top}) {
+  for (View v : all_views()) {
     const ViewDirections body = view_directions(v);
     const ViewDirections world = view_directions(v, T);
     EXPECT_TRUE(world.forward.isApprox(R * body.forward, 1e-9)) << view_name(v);
@@ -57,14 +60,18 @@ TEST(View, FollowsTheBodyToWorldRotation) {
 }
 
 TEST(View, Names) {
-  for (View v : {View::Front, View::Side, View::Oblique, View::Back, View::Top})
-    EXPECT_EQ(view_from_name(view_name(v)), v);
+  for (View v : all_views()) EXPECT_EQ(view_from_name(view_name(v)), v);
+  EXPECT_EQ(all_views().size(), 7u);
+  EXPECT_EQ(view_from_name("side-right"), View::Side);
+  EXPECT_EQ(view_from_name("oblique-right"), View::Oblique);
   EXPECT_THROW(view_from_name("left"), InvalidInput);
   const auto views = default_views();
-  ASSERT_EQ(views.size(), 3u);
+  ASSERT_EQ(views.size(), 5u);
   EXPECT_EQ(views[0], View::Front);
   EXPECT_EQ(views[1], View::Side);
-  EXPECT_EQ(views[2], View::Oblique);
+  EXPECT_EQ(views[2], View::SideLeft);
+  EXPECT_EQ(views[3], View::Oblique);
+  EXPECT_EQ(views[4], View::ObliqueLeft);
 }
 
 }  // namespace

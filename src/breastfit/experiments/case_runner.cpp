@@ -27,11 +27,16 @@ CaseRunner::CaseRunner(const EvalCase& c) : case_(c), ref_(std::make_unique<Refe
 
 CaseRunner::~CaseRunner() = default;
 
+std::string run_status(const fit::FitSummary& s) {
+  if (s.usable()) return "ok";
+  return s.converged() ? "not_usable" : "not_converged";
+}
+
 RunRecord CaseRunner::score(const pipeline::RegisterResult& r) const {
   RunRecord rec;
   rec.case_id = case_.id;
   rec.pose = case_.pose;
-  rec.status = r.usable() ? "ok" : "not_converged";
+  rec.status = run_status(r.fit.summary);
   rec.message = r.fit.summary.message;
   rec.time_s = r.time_s;
   rec.iterations = static_cast<int>(r.fit.summary.iterations.size());

@@ -14,6 +14,10 @@
 
 namespace breastfit::experiments {
 
+/// The run record's status of a registration: "ok" when usable, else "not_usable" when the
+/// solver converged (the verdict rejected the fit) or "not_converged" when it did not.
+std::string run_status(const fit::FitSummary& summary);
+
 class CaseRunner {
  public:
   /// Keeps a reference to `c` (must outlive the runner). \throws InvalidInput for a scan that

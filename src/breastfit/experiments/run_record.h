@@ -13,7 +13,10 @@ namespace breastfit::experiments {
 struct RunRecord {
   std::string case_id;
   std::string pose;                    ///< "standing", "supine" or "unknown"
-  std::string status = "ok";           ///< "ok", "not_converged" (a fit was made but flagged) or "error" (no fit)
+  /// "ok" (usable), "not_usable" (the solver converged but the verdict rejects the fit),
+  /// "not_converged" (not usable and the solver did not converge: cap, abort, numerical failure)
+  /// or "error" (no fit). See run_status.
+  std::string status = "ok";
   std::string message;                 ///< the solver's stopping reason, or the error
   double time_s = 0;                   ///< scan and landmarks in memory → fitted parameters (index build included)
   int iterations = 0;
@@ -32,7 +35,7 @@ struct RunRecord {
   metrics::DistanceStats truth_surface, truth_landmarks;
   std::vector<std::pair<std::string, double>> drawings_mm;
 
-  /// Numbers exist (status "ok" or "not_converged").
+  /// Numbers exist (status "ok", "not_usable" or "not_converged").
   bool has_numbers() const { return status != "error"; }
 };
 

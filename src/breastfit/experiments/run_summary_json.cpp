@@ -36,9 +36,10 @@ nlohmann::json stats_means(const std::vector<const RunRecord*>& runs, const Stat
 
 nlohmann::json group(const std::vector<const RunRecord*>& all) {
   std::vector<const RunRecord*> with_numbers, with_truth;
-  int not_converged = 0, errors = 0;
+  int not_converged = 0, not_usable = 0, errors = 0;
   for (const RunRecord* r : all) {
     if (r->status == "not_converged") ++not_converged;
+    if (r->status == "not_usable") ++not_usable;
     if (!r->has_numbers()) {
       ++errors;
       continue;
@@ -49,6 +50,7 @@ nlohmann::json group(const std::vector<const RunRecord*>& all) {
   nlohmann::json g = {
       {"n", all.size()},
       {"n_not_converged", not_converged},
+      {"n_not_usable", not_usable},
       {"n_error", errors},
       {"time_s", mean(with_numbers, [](const RunRecord& r) { return r.time_s; })},
       {"iterations", mean(with_numbers, [](const RunRecord& r) { return static_cast<double>(r.iterations); })},

@@ -10,10 +10,10 @@
 namespace breastfit::experiments {
 
 /// {"standing": G, "supine": G, "all": G} (a pose group only when it has runs), each
-/// G = {"n", "n_not_converged", "n_error", "time_s", "iterations",
+/// G = {"n", "n_not_converged", "n_not_usable", "n_error", "time_s", "iterations",
 ///      "paper": {"surface": {"mae","sd","max"}, "landmarks": {"mae","sd","max","min"}},
 ///      "truth": {"n", "surface": {...}, "landmarks": {...}, "drawings_mm": {name: mean}}}:
-/// means over the runs that produced numbers (status ok or not_converged; truth over those
+/// means over the runs that produced numbers (status ok, not_usable or not_converged; truth over those
 /// with truth). A mean over no run is null.
 nlohmann::json summarize(const std::vector<const RunRecord*>& runs);
 

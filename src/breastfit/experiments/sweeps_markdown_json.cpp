@@ -25,7 +25,8 @@ std::string pose_cells(const json& e) {
     s << " " << cell(json_at(g, {"truth", "surface", "mae"})) << " | " << cell(json_at(g, {"paper", "surface", "mae"})) << " | "
       << cell(json_at(g, {"truth", "landmarks", "mae"})) << " | " << cell(json_at(g, {"paper", "landmarks", "mae"})) << " | "
       << cell(json_at(g, {"time_s"}), 3) << " | ";
-    const int flagged = json_at(g, {"n_not_converged"}).is_number() ? json_at(g, {"n_not_converged"}).get<int>() : 0;
+    auto count = [&](const char* key) { return json_at(g, {key}).is_number() ? json_at(g, {key}).get<int>() : 0; };
+    const int flagged = count("n_not_converged") + count("n_not_usable");
     const int errors = json_at(g, {"n_error"}).is_number() ? json_at(g, {"n_error"}).get<int>() : 0;
     if (g.is_null())
       s << "–";

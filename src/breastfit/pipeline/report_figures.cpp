@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <future>
 #include <limits>
 #include <utility>
@@ -11,6 +12,7 @@
 #include "breastfit/fit/scan_target.h"
 #include "breastfit/mesh/cleanup.h"
 #include "breastfit/mesh/body_frame.h"
+#include "breastfit/mesh/normals.h"
 #include "breastfit/render/torso_overlays.h"
 
 namespace breastfit::pipeline {
@@ -62,6 +64,12 @@ Points rows_of(const Points& P, const std::vector<Eigen::Index>& idx) {
 render::Rgb pale(render::Rgb c) { return render::mix(c, {255, 255, 255}, 0.5); }
 
 constexpr const char* kOffScanLegend = "pale: no scan under it";
+/// "2.5", "10": a scale value without trailing zeros.
+std::string format_mm(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
 
 render::RenderOptions base_options(const ReportFigureOptions& o, const Eigen::Matrix4d& body_to_world) {
   render::RenderOptions ro;
@@ -109,53 +117,23 @@ TriangleMesh scan_near_fit(const RegisterResult& r, const Eigen::Matrix4d& body_
   return out;
 }
 
-}  // namespace
-
-void ReportFigureOptions::validate() const {
-  if (size < 64 || size > 8192)
-    throw InvalidInput("ReportFigureOptions: size must be in [64, 8192], got " + std::to_string(size));
-  if (supersample < 1 || supersample > 4)
-    throw InvalidInput("ReportFigureOptions: supersample must be in [1, 4], got " + std::to_string(supersample));
-  if (text_scale < 1 || text_scale > 16)
-    throw InvalidInput("ReportFigureOptions: text_scale must be in [1, 16], got " + std::to_string(text_scale));
-  if (!(distance_range_mm > 0) || !std::isfinite(distance_range_mm))
-    throw InvalidInput("ReportFigureOptions: distance_range_mm must be > 0, got " + std::to_string(distance_range_mm));
+/// The scan as the overlay figures show it: scan_near_fit, with vertex normals (computed once
+/// here rather than by every view).
+TriangleMesh overlay_scan(const RegisterResult& r) {
+  TriangleMesh scan = r.scan.mesh_mm.num_faces() > 0 && r.fitted_mm.V.rows() > 0
+                          ? scan_near_fit(r, body_frame_of(r).body_to_world)
+                          : r.scan.mesh_mm;
+  if (scan.num_faces() > 0 && !scan.has_normals()) scan.N = mesh::vertex_normals(scan.V, scan.F);
+  return scan;
 }
 
-render::Rgb report_curve_colour(const std::string& name, size_t index) {
-  if (name.rfind("breast_contour", 0) == 0) return {20, 90, 200};  // blue
-  if (name.rfind("imf", 0) == 0) return {0, 140, 60};              // green
-  if (name.rfind("sternum", 0) == 0) return {200, 30, 130};        // magenta
-  static constexpr std::array<render::Rgb, 3> kOthers = {{
-      {110, 50, 200},  // purple
-      {0, 145, 160},   // teal
-      {60, 60, 60},    // dark grey
-  }};
-  return kOthers[index % kOthers.size()];
-}
-
-Eigen::VectorXd model_to_scan_distances(const RegisterResult& r) {
-  const Points& V = r.fitted_mm.V;
-  Eigen::VectorXd d(V.rows());
-  if (V.rows() == 0) return d;
-  const fit::ScanTarget scan(r.scan.mesh_mm, 0);
-  const bool skip_border = !r.scan.was_point_cloud;
-  for (Eigen::Index i = 0; i < V.rows(); ++i) {
-    const fit::ScanMatch m = scan.closest(V.row(i).transpose());
-    d[i] = skip_border && m.on_boundary ? std::numeric_limits<double>::quiet_NaN() : std::sqrt(m.sq_dist);
-  }
-  return d;
-}
-
-render::Scene overlay_scene(const RegisterResult& r, const ReportFigureOptions& o) {
+render::Scene overlay_scene_with(const RegisterResult& r, const ReportFigureOptions& o, TriangleMesh scan) {
   render::OverlaySizes sizes(o.size);
   sizes.line_width_px *= 1.3;  // drawings are the point of the figure: a little bolder than `render`
   render::Scene scene;
   scene.meshes.emplace_back();
   scene.meshes.back().name = "scan";
-  scene.meshes.back().mesh = r.scan.mesh_mm.num_faces() > 0 && r.fitted_mm.V.rows() > 0
-                                 ? scan_near_fit(r, body_frame_of(r).body_to_world)
-                                 : r.scan.mesh_mm;
+  scene.meshes.back().mesh = std::move(scan);
 
   bool any_off_scan = false;
   for (size_t k = 0; k < r.drawings_on_scan.size(); ++k) {
@@ -184,8 +162,73 @@ render::Scene overlay_scene(const RegisterResult& r, const ReportFigureOptions& 
     legend_only.width_px = std::max(1.5, 0.6 * sizes.line_width_px);
     scene.polylines.push_back(std::move(legend_only));
   }
+  std::vector<NamedPoint> placed;
+  for (const fit::LandmarkTarget& t : r.fit.landmarks) placed.push_back({t.name, t.position});
+  render::add_placed_landmarks(scene, placed, r.model_landmarks_mm.points, sizes);
   for (const auto& p : r.model_landmarks_mm.points) scene.points.push_back(render::landmark_point(p.name, p.position, sizes));
   return scene;
+}
+
+}  // namespace
+
+void ReportFigureOptions::validate() const {
+  if (size < 64 || size > 8192)
+    throw InvalidInput("ReportFigureOptions: size must be in [64, 8192], got " + std::to_string(size));
+  if (supersample < 1 || supersample > 4)
+    throw InvalidInput("ReportFigureOptions: supersample must be in [1, 4], got " + std::to_string(supersample));
+  if (text_scale < 1 || text_scale > 16)
+    throw InvalidInput("ReportFigureOptions: text_scale must be in [1, 16], got " + std::to_string(text_scale));
+  if (side_size < 64 || side_size > 8192)
+    throw InvalidInput("ReportFigureOptions: side_size must be in [64, 8192], got " + std::to_string(side_size));
+  if (distance_range_mm && (!(*distance_range_mm > 0) || !std::isfinite(*distance_range_mm)))
+    throw InvalidInput("ReportFigureOptions: distance_range_mm must be > 0, got " + std::to_string(*distance_range_mm));
+}
+
+render::Rgb report_curve_colour(const std::string& name, size_t index) { return render::drawing_colour(name, index); }
+
+Eigen::VectorXd model_to_scan_distances(const RegisterResult& r) {
+  const Points& V = r.fitted_mm.V;
+  Eigen::VectorXd d(V.rows());
+  if (V.rows() == 0) return d;
+  const fit::ScanTarget scan(r.scan.mesh_mm, 0);
+  const bool skip_border = !r.scan.was_point_cloud;
+  for (Eigen::Index i = 0; i < V.rows(); ++i) {
+    const fit::ScanMatch m = scan.closest(V.row(i).transpose());
+    d[i] = skip_border && m.on_boundary ? std::numeric_limits<double>::quiet_NaN() : std::sqrt(m.sq_dist);
+  }
+  return d;
+}
+
+render::Scene overlay_scene(const RegisterResult& r, const ReportFigureOptions& o) {
+  return overlay_scene_with(r, o, overlay_scan(r));
+}
+
+
+double distance_scale_mm(const Eigen::VectorXd& d) {
+  std::vector<double> v;
+  v.reserve(static_cast<size_t>(d.size()));
+  for (Eigen::Index i = 0; i < d.size(); ++i)
+    if (std::isfinite(d[i])) v.push_back(d[i]);
+  if (v.empty()) return kMinDistanceScaleMm;
+  const size_t k = std::min(v.size() - 1, static_cast<size_t>(std::ceil(0.95 * static_cast<double>(v.size()))) - 1);
+  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
+  const double p95 = std::max(v[k], kMinDistanceScaleMm);
+  static constexpr std::array<double, 10> kNice = {1, 1.5, 2, 2.5, 3, 4, 5, 6, 8, 10};
+  const double decade = std::pow(10.0, std::floor(std::log10(p95)));
+  for (double n : kNice)
+    if (n * decade >= p95 * (1 - 1e-12)) return n * decade;
+  return 10 * decade;
+}
+
+render::ScalarField distance_field(const Eigen::VectorXd& distances_mm, double hi_mm) {
+  render::ScalarField field;
+  field.values = distances_mm;
+  field.map = render::Colormap::Viridis;
+  field.lo = 0.0;
+  field.hi = hi_mm;
+  field.units = "mm";
+  field.label = "distance";
+  return field;
 }
 
 ReportFigures render_report_figures(const RegisterResult& r, const ReportFigureOptions& o) {
@@ -195,65 +238,86 @@ ReportFigures render_report_figures(const RegisterResult& r, const ReportFigureO
   ReportFigures out;
   const mesh::BodyFrame frame = body_frame_of(r);
   out.body_frame = frame.description;
+  out.body_to_world = frame.body_to_world;
 
-  const render::Scene scene = overlay_scene(r, o);
+  const TriangleMesh scan = overlay_scan(r);
+  const render::Scene scene = overlay_scene_with(r, o, scan);
+  ReportFigureOptions side = o;  // the four side views are shown two to a row: smaller images
+  side.size = o.side_size;
+  side.text_scale = std::max(1, o.text_scale / 2);
+  const render::Scene side_scene = overlay_scene_with(r, side, scan);
 
-  out.figures.resize(3);
-  out.figures[0] = {"front", "Front: scan, fitted landmarks, drawings",
-                    "The scan seen from the front (the patient's right on the left of the image) with the fitted "
-                    "model's landmarks (red) and the template's drawings transferred onto the scan: breast contours "
-                    "blue, inframammary folds green, sternum magenta. Scan parts far outside the torso (table, "
-                    "background) are left out.",
-                    {}, {}};
-  out.figures[1] = {"oblique", "Oblique (front-right)",
-                    "The same from the patient's front-right, 45 degrees: the lateral side of the right breast and "
-                    "its fold. Parts hidden behind the body are drawn faded.",
-                    {}, {}};
-  out.figures[2] = {"distance", "Fitted model: distance to the scan",
-                    "The fitted model coloured by its distance to the scan (dark: close, yellow: far; everything "
-                    "beyond the colour bar's range is yellow). Grey: no scan to compare with (holes, beyond the "
-                    "scanned area).",
-                    {}, {}};
+  struct Spec {
+    const char* id;
+    const char* title;
+    const char* caption;
+    render::View view;
+    bool small;
+  };
+  static const std::array<Spec, 5> kOverlays = {{
+      {"front", "Front: scan, landmarks, drawings",
+       "The scan seen from the front (the patient's right on the left of the image) with the fitted model's "
+       "landmarks (red, labelled), the landmarks placed on the scan (dark, joined to the fitted ones by a line) and "
+       "the template's drawings transferred onto the scan: breast contours blue, inframammary folds green, sternum "
+       "magenta. Scan parts far outside the torso (table, background) are left out.",
+       render::View::Front, false},
+      {"oblique-right", "Right oblique",
+       "From the patient's front-right, 45 degrees: the lateral side of the right breast and its fold. Parts hidden "
+       "behind the body are drawn faded.",
+       render::View::Oblique, true},
+      {"oblique-left", "Left oblique", "From the patient's front-left, 45 degrees: the left breast and its fold.",
+       render::View::ObliqueLeft, true},
+      {"side-right", "Right side",
+       "The patient's right side (anterior to the right of the image): breast projection, fold and the "
+       "mid-axillary line.",
+       render::View::Side, true},
+      {"side-left", "Left side", "The patient's left side (anterior to the left of the image).",
+       render::View::SideLeft, true},
+  }};
+  out.figures.resize(kOverlays.size() + 1);
+  for (size_t k = 0; k < kOverlays.size(); ++k)
+    out.figures[k] = {kOverlays[k].id, kOverlays[k].title, kOverlays[k].caption, {}, {}};
+  ReportFigure& dist_fig = out.figures.back();
+  dist_fig = {"distance", "Fitted model: distance to the scan", "", {}, {}};
 
-  auto overlay_figure = [&](ReportFigure& f, render::View view) {
-    render::RenderOptions ro = base_options(o, frame.body_to_world);
-    ro.view = view;
+  auto overlay_figure = [&](size_t k) {
+    const Spec& sp = kOverlays[k];
+    ReportFigure& f = out.figures[k];
+    render::RenderOptions ro = base_options(sp.small ? side : o, frame.body_to_world);
+    ro.view = sp.view;
     ro.title = f.title;
-    f.image = render::render_scene(scene, ro);
+    f.image = render::render_scene(sp.small ? side_scene : scene, ro);
     f.png = f.image.encode_png();
   };
-  auto distance_figure = [&](ReportFigure& f) {
+  auto distance_figure = [&] {
     out.distances_mm = model_to_scan_distances(r);
+    const double hi = o.distance_range_mm ? *o.distance_range_mm : distance_scale_mm(out.distances_mm);
+    out.distance_scale_mm = hi;
+    dist_fig.caption = "The fitted model coloured by its distance to the scan, 0 to " + format_mm(hi) +
+                       " mm (dark: close, yellow: far; farther than " + format_mm(hi) + " mm is yellow too" +
+                       (o.distance_range_mm ? "" : "; the scale's top is the 95th percentile of the distances, rounded up") +
+                       "). Grey: no scan to compare with (holes, beyond the scanned area).";
     render::Scene dist;
     dist.meshes.emplace_back();
     dist.meshes.back().name = "fitted";
     dist.meshes.back().mesh = r.fitted_mm;
-    render::ScalarField field;
-    field.values = out.distances_mm;
-    field.map = render::Colormap::Viridis;
-    field.lo = 0.0;
-    field.hi = o.distance_range_mm;
-    field.units = "mm";
-    field.label = "distance";
-    dist.meshes.back().scalars = std::move(field);
+    dist.meshes.back().scalars = distance_field(out.distances_mm, hi);
     render::RenderOptions ro = base_options(o, frame.body_to_world);
     ro.view = render::View::Front;
-    ro.title = f.title;
-    f.image = render::render_scene(dist, ro);
-    f.png = f.image.encode_png();
+    ro.title = dist_fig.title;
+    dist_fig.image = render::render_scene(dist, ro);
+    dist_fig.png = dist_fig.image.encode_png();
   };
-  // Each figure is rendered by one thread from shared read-only inputs into its own slot, so the
+  // Each figure is rendered by one task from shared read-only inputs into its own slot, so the
   // pixels do not depend on `parallel`.
   if (o.parallel) {
-    auto front = std::async(std::launch::async, [&] { overlay_figure(out.figures[0], render::View::Front); });
-    auto oblique = std::async(std::launch::async, [&] { overlay_figure(out.figures[1], render::View::Oblique); });
-    distance_figure(out.figures[2]);
-    front.get();
-    oblique.get();
+    std::vector<std::future<void>> tasks;
+    for (size_t k = 0; k < kOverlays.size(); ++k) tasks.push_back(std::async(std::launch::async, overlay_figure, k));
+    distance_figure();
+    for (auto& t : tasks) t.get();
   } else {
-    overlay_figure(out.figures[0], render::View::Front);
-    overlay_figure(out.figures[1], render::View::Oblique);
-    distance_figure(out.figures[2]);
+    for (size_t k = 0; k < kOverlays.size(); ++k) overlay_figure(k);
+    distance_figure();
   }
   return out;
 }

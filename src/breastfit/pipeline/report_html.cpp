@@ -10,6 +10,7 @@
 #include "breastfit/mesh/units.h"
 #include "breastfit/pipeline/curve_confidence.h"
 #include "breastfit/pipeline/data_uri.h"
+#include "breastfit/pipeline/provenance_json.h"
 
 namespace breastfit::pipeline {
 namespace {
@@ -53,6 +54,11 @@ table.meta th { width: 9em; }
 .swatch { display: inline-block; width: 1.6em; height: 0.5em; vertical-align: middle; border-radius: 2px; }
 .note { color: #555; font-size: 0.92em; }
 figure { margin: 1em 0; }
+.grid { display: grid; grid-template-columns: repeat(auto-fit, minmax(300px, 1fr)); gap: 0 1em; }
+.grid figure img { max-width: 100%; }
+code.hash { font-size: 0.85em; word-break: break-all; }
+details { margin: 0.6em 0; } summary { cursor: pointer; }
+pre { background: #f4f4f4; padding: 0.6em; font-size: 0.85em; max-height: 40em; overflow: auto; }
 figure img { width: 100%; max-width: 900px; height: auto; border: 1px solid #ddd; }
 figcaption { font-size: 0.95em; color: #333; max-width: 900px; }
 code { background: #f4f4f4; padding: 0 0.2em; }
@@ -116,6 +122,35 @@ void how_to_read(std::string& h) {
        "measurements). All numbers are in millimetres unless stated.</p>\n";
 }
 
+/// How the solver ended, for a reader: "converged" when a convergence test stopped it; at the
+/// last stage's iteration cap "finished its iteration schedule" with the last step's relative
+/// energy change (how settled it was) — a cap is the schedule's end, not a failure (the verdict
+/// says whether the fit is usable); the per-stage endings as a detail.
+std::string solver_text(const fit::FitSummary& s) {
+  std::string head;
+  if (s.converged()) {
+    head = "<b>converged</b> (" + std::string(fit::to_string(s.termination)) + ")";
+  } else if (s.termination == fit::Termination::IterationCap) {
+    head = "<b>finished its iteration schedule</b>";
+    if (!s.iterations.empty() && s.iterations.back().energy_before > 0) {
+      const auto& it = s.iterations.back();
+      head += " (its last step changed the energy by " +
+              num(100.0 * (it.energy_after - it.energy_before) / it.energy_before, 2) + " %)";
+    }
+  } else {
+    head = "<b>" + html_escape(s.termination_message) + "</b>";
+  }
+  std::string stages;
+  for (const auto& st : s.stages)
+    stages += (stages.empty() ? "" : "; ") + html_escape(st.name) + " " + std::to_string(st.iterations) + " (" +
+              (fit::is_convergence(st.termination) ? std::string("converged")
+               : st.termination == fit::Termination::IterationCap ? std::string("its cap")
+                                                                   : std::string(fit::to_string(st.termination))) +
+              ")";
+  return head + "<br><span class=\"note\">" + html_escape(s.termination_message) +
+         (stages.empty() ? "" : ". Iterations per stage: " + stages + ".") + "</span>";
+}
+
 void registration_table(std::string& h, const RegisterResult& r, const ReportFigures& figures) {
   const auto& s = r.fit.summary;
   h += "<h2>Summary</h2>\n<table>\n";
@@ -125,8 +160,7 @@ void registration_table(std::string& h, const RegisterResult& r, const ReportFig
     stages += (stages.empty() ? "" : ", ") + html_escape(st.name) + " " + std::to_string(st.iterations);
   row(h, "Iterations", std::to_string(s.iterations.size()) + (stages.empty() ? "" : " (" + stages + ")"));
   row(h, "Verdict", html_escape(s.verdict.reason));
-  row(h, "Solver", html_escape(s.termination_message) + " <span class=\"note\">(" + fit::to_string(s.termination) +
-                       (s.converged() ? ": converged" : "") + ")</span>");
+  row(h, "Solver", solver_text(s));
   row(h, "Initialisation",
       html_escape(s.initialization) + ", " + std::to_string(s.landmarks_used) + " landmark" +
           (s.landmarks_used == 1 ? "" : "s") + " used" +
@@ -171,14 +205,16 @@ void landmarks_table(std::string& h, const RegisterResult& r) {
   if (r.landmarks.names.empty()) return;
   h += "<h2>Landmarks</h2>\n<p class=\"note\">Distance between each fitted landmark and the landmark given on the "
        "scan. A landmark farther than its tolerance (15 mm; 30 mm for the mid-axillary points, which mark a line "
-       "on skin that slides with the arm) is marked: check its placement on the scan. The fit gives such a "
-       "landmark less weight.</p>\n<table>\n<tr><th>landmark</th><th>error (mm)</th><th></th></tr>\n";
+       "on skin that slides with the arm, weighted 0.1 in the fit: errors of 10&ndash;20 mm along the line are "
+       "usual) is marked: check its placement on the scan. The fit gives such a landmark less weight.</p>\n<table>\n"
+       "<tr><th>landmark</th><th>error (mm)</th><th>tolerance (mm)</th><th></th></tr>\n";
   for (size_t i = 0; i < r.landmarks.names.size(); ++i) {
     const double d = r.landmarks.distances_mm[i];
     const fit::LandmarkCheck* check = nullptr;
     for (const auto& c : r.fit.summary.landmark_checks)
       if (c.name == r.landmarks.names[i]) check = &c;
-    h += "<tr><td>" + html_escape(r.landmarks.names[i]) + "</td><td class=\"n\">" + num(d, 1) + "</td><td>" +
+    h += "<tr><td>" + html_escape(r.landmarks.names[i]) + "</td><td class=\"n\">" + num(d, 1) + "</td><td class=\"n\">" +
+         (check ? num(check->tolerance_mm, 0) : std::string("&mdash;")) + "</td><td>" +
          (check && check->flagged
               ? "<span class=\"badge check\">check</span> <span class=\"note\">beyond " +
                     num(check->tolerance_mm, 0) + " mm</span>"
@@ -239,13 +275,43 @@ void figures_section(std::string& h, const ReportFigures& figures) {
   h += "<h2>Figures</h2>\n<p class=\"note\">Views oriented by the fitted model's anatomy (" +
        html_escape(figures.body_frame) +
        "). In front views the patient's right is on the left of the image (letters R and L at the sides).</p>\n";
+  // Full-width figures alone; the smaller (side) figures two to a row.
+  const int full = figures.figures.front().image.width();
   int number = 0;
+  bool in_grid = false;
   for (const auto& f : figures.figures) {
+    const bool small = f.image.width() < full;
+    if (small && !in_grid) h += "<div class=\"grid\">\n";
+    if (!small && in_grid) h += "</div>\n";
+    in_grid = small;
     h += "<figure id=\"fig-" + html_escape(f.id) + "\"><img src=\"" + data_uri("image/png", f.png.empty() ? f.image.encode_png() : f.png) +
          "\" width=\"" + std::to_string(f.image.width()) + "\" height=\"" + std::to_string(f.image.height()) +
          "\" alt=\"" + html_escape(f.title) + "\">\n<figcaption><b>Figure " + std::to_string(++number) + ".</b> " +
          html_escape(f.caption) + "</figcaption></figure>\n";
   }
+  if (in_grid) h += "</div>\n";
+}
+
+void provenance_section(std::string& h, const RegisterResult& r) {
+  h += "<h2 id=\"provenance\">Traceability</h2>\n";
+  if (!r.provenance) {
+    h += "<p class=\"note\">Not recorded for this registration (it was not run from files).</p>\n";
+    return;
+  }
+  const Provenance& p = *r.provenance;
+  h += "<p class=\"note\">What this registration read and how it ran (the same as report.json's "
+       "<code>provenance</code> and <code>run</code> blocks). Compare the SHA-256 of a file with "
+       "<code>sha256sum FILE</code> to check it is the one used.</p>\n<table class=\"meta\">\n";
+  row(h, "breastfit", html_escape(p.version));
+  for (const InputFile& f : p.inputs)
+    row(h, f.role, "<code>" + html_escape(f.path) + "</code><br><span class=\"note\">SHA-256</span> <code class=\"hash\">" +
+                       html_escape(f.sha256) + "</code>");
+  h += "</table>\n<table class=\"meta\">\n<tbody class=\"run\">\n";
+  row(h, "Started (UTC)", html_escape(p.started_utc));
+  row(h, "Command line", "<code>" + html_escape(p.command_line) + "</code>");
+  h += "</tbody>\n</table>\n<details><summary>Effective fit options (every weight, threshold and stage; usable as "
+       "<code>--config</code> to repeat the fit)</summary>\n<pre>" +
+       html_escape(provenance_json(p)["fit_options"].dump(2)) + "</pre></details>\n";
 }
 
 void files_section(std::string& h) {
@@ -299,6 +365,7 @@ std::string report_html(const RegisterResult& r, const std::string& template_nam
   figures_section(h, figures);
   landmarks_table(h, r);
   files_section(h);
+  provenance_section(h, r);
   h += "</body>\n</html>\n";
   return h;
 }

@@ -7,10 +7,12 @@
 ///  - the registration (time, iterations, stopping reason), the paper's surface and landmark
 ///    errors (with a per-landmark table), the transferred drawings (length, share on the scan,
 ///    mean model-to-scan distance, confidence with its rule) and the breast measurements;
-///  - the three figures of report_figures.h;
-///  - what the other output files are and what to open them with.
-/// Deterministic: no dates; the same result gives the same bytes (only time_s differs between
-/// runs of the same registration).
+///  - the six figures of report_figures.h (front, obliques and sides, distance);
+///  - what the other output files are and what to open them with;
+///  - traceability (RegisterResult::provenance): version, inputs with SHA-256, the UTC start
+///    time and command line, the effective fit options (collapsed, as --config JSON).
+/// Deterministic: the same result gives the same bytes; between runs of the same registration
+/// only time_s and the run rows (`<tbody class="run">`: start time, command line) differ.
 #include <filesystem>
 #include <string>
 

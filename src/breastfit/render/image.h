@@ -60,7 +60,8 @@ class Image {
   /// The packed RGB bytes (width * height * 3).
   const std::vector<std::uint8_t>& bytes() const { return data_; }
 
-  /// The image encoded as PNG (deterministic: same pixels give the same bytes).
+  /// The image encoded as PNG (encode_png_rgb8 with its default options; deterministic: same
+  /// pixels give the same bytes).
   std::vector<std::uint8_t> encode_png() const;
   /// Writes a PNG file (parent directories must exist).
   /// \throws IoError if the file cannot be written; InvalidInput if the image is empty.

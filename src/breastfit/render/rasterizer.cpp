@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <string>
 #include <utility>
@@ -18,7 +19,8 @@ constexpr std::uint32_t kVisibleInk = std::numeric_limits<std::uint32_t>::max();
 constexpr float kEmpty = std::numeric_limits<float>::infinity();
 
 Rgb scale_rgb(const Vec3& c) {
-  auto ch = [](double v) { return static_cast<std::uint8_t>(std::clamp(std::lround(v), 0L, 255L)); };
+  // Round half up after clamping to [0, 255] (NaN → 0): no libm call per channel.
+  auto ch = [](double v) { return static_cast<std::uint8_t>(v > 0 ? std::min(v, 255.0) + 0.5 : 0.0); };
   return {ch(c[0]), ch(c[1]), ch(c[2])};
 }
 
@@ -35,6 +37,19 @@ Lighting make_lighting(const Camera& cam) {
   return {-f, (-0.8 * f + 0.7 * u - 0.5 * r).normalized()};
 }
 
+/// x^e for x in [0, 1]: by repeated squaring when e is a whole number up to 64 (the default
+/// shininess 24: five multiplications instead of a pow call per pixel), else std::pow.
+double power(double x, double e) {
+  const int n = static_cast<int>(e);
+  if (n != e || n < 0 || n > 64) return std::pow(x, e);
+  double result = 1.0, base = x;
+  for (int k = n; k > 0; k >>= 1) {
+    if (k & 1) result *= base;
+    base *= base;
+  }
+  return result;
+}
+
 /// Shaded colour of a surface sample whose normal `n` already faces the viewer.
 Vec3 shade(const Vec3& base, const Vec3& n, bool front, const Lighting& light, const SurfaceStyle& s) {
   const double d1 = std::max(0.0, n.dot(light.headlight));
@@ -44,7 +59,7 @@ Vec3 shade(const Vec3& base, const Vec3& n, bool front, const Lighting& light, c
     const Vec3 tinted = 0.2 * base + 0.8 * to_vec(s.back_colour);
     return tinted * (intensity * s.back_brightness);
   }
-  const double spec = s.specular > 0 ? s.specular * std::pow(d1, s.shininess) : 0.0;
+  const double spec = s.specular > 0 ? s.specular * power(d1, s.shininess) : 0.0;
   return base * intensity + Vec3::Constant(255.0 * spec);
 }
 
@@ -72,6 +87,18 @@ double edge(const Projected& a, const Projected& b, double px, double py) {
   return (b.x - a.x) * (py - a.y) - (b.y - a.y) * (px - a.x);
 }
 
+/// dx · px + dy · py + c.
+struct Linear {
+  double dx = 0, dy = 0, c = 0;
+  double at(double px, double py) const { return dx * px + dy * py + c; }
+};
+
+/// edge(a, b, px, py) · scale as a linear function of the pixel position.
+Linear edge_function(const Projected& a, const Projected& b, double scale) {
+  const double ex = b.x - a.x, ey = b.y - a.y;
+  return {-ey * scale, ex * scale, (ey * a.x - ex * a.y) * scale};
+}
+
 }  // namespace
 
 void RasterOptions::validate() const {
@@ -94,7 +121,6 @@ Rasterizer::Rasterizer(const Camera& camera, const RasterOptions& options)
   h_ = options_.height * options_.supersample;
   colour_ = Image(w_, h_, options_.background);
   depth_.assign(static_cast<size_t>(w_) * h_, kEmpty);
-  ink_.assign(static_cast<size_t>(w_) * h_, 0);
 }
 
 Projected Rasterizer::project_internal(const Vec3& p) const { return camera_.project(p, w_, h_); }
@@ -167,19 +193,46 @@ void Rasterizer::draw_mesh(const Points& V, const Triangles& F, const Points& N,
   const Points normals = (style.smooth && N.rows() == 0) ? mesh::vertex_normals(V, F) : Points();
   const Points& vn = N.rows() ? N : normals;
 
+  // Deferred shading: pass 1 finds, per pixel, the nearest triangle of this call (depth test as
+  // in a direct renderer: of equal depths the first drawn wins); pass 2 shades each covered pixel
+  // once with that triangle, without shading surfaces that are drawn over later (the back of the
+  // torso).
+  struct Tri {
+    Vec3 ng;  // geometric normal, not normalised
+    bool front = false;
+    double area = 0;
+  };
+  std::vector<Tri> tris(static_cast<size_t>(F.rows()));
+  std::vector<std::int32_t> winner(static_cast<size_t>(w_) * h_, -1);
+  int bx0 = w_, by0 = h_, bx1 = -1, by1 = -1;  // bounding box of the pixels won by this call
+  // Triangles in screen tiles of 32 × 32 pixels (row-major; stable within a tile), so that the
+  // depth and winner buffers are walked with locality whatever the mesh's triangle order.
+  constexpr int kTile = 32;
+  const int tiles_x = (w_ + kTile - 1) / kTile, tiles_y = (h_ + kTile - 1) / kTile;
+  std::vector<std::int32_t> tile_of(static_cast<size_t>(F.rows()));
+  std::vector<std::int32_t> tile_start(static_cast<size_t>(tiles_x) * tiles_y + 1, 0);
   for (Eigen::Index t = 0; t < F.rows(); ++t) {
+    const Projected &p0 = P[F(t, 0)], &p1 = P[F(t, 1)], &p2 = P[F(t, 2)];
+    const double cx = (p0.x + p1.x + p2.x) / 3.0, cy = (p0.y + p1.y + p2.y) / 3.0;
+    const int tx = std::clamp(pixel_index(cx), 0, w_ - 1) / kTile, ty = std::clamp(pixel_index(cy), 0, h_ - 1) / kTile;
+    tile_of[static_cast<size_t>(t)] = ty * tiles_x + tx;
+    ++tile_start[static_cast<size_t>(ty * tiles_x + tx) + 1];
+  }
+  for (size_t k = 1; k < tile_start.size(); ++k) tile_start[k] += tile_start[k - 1];
+  std::vector<std::int32_t> order(static_cast<size_t>(F.rows()));
+  for (Eigen::Index t = 0; t < F.rows(); ++t) order[static_cast<size_t>(tile_start[tile_of[t]]++)] = static_cast<std::int32_t>(t);
+  for (const std::int32_t t : order) {
     const Index i0 = F(t, 0), i1 = F(t, 1), i2 = F(t, 2);
     const Projected &p0 = P[i0], &p1 = P[i1], &p2 = P[i2];
     if (perspective && (p0.depth <= camera_.near || p1.depth <= camera_.near || p2.depth <= camera_.near))
       continue;
     const Vec3 v0 = V.row(i0), v1 = V.row(i1), v2 = V.row(i2);
-    Vec3 ng = (v1 - v0).cross(v2 - v0);
+    const Vec3 ng = (v1 - v0).cross(v2 - v0);  // normalised in pass 2, for the winners only
     if (!(ng.squaredNorm() > 0)) continue;
-    ng.normalize();
     const Vec3 to_eye = perspective ? Vec3(camera_.eye - v0) : Vec3(-f);
-    const bool front = ng.dot(to_eye) > 0;
     const double area = edge(p0, p1, p2.x, p2.y);
     if (!(std::abs(area) > 1e-12)) continue;
+    tris[static_cast<size_t>(t)] = {ng, ng.dot(to_eye) > 0, area};
 
     const Span xs = pixel_span(std::min({p0.x, p1.x, p2.x}), std::max({p0.x, p1.x, p2.x}), w_);
     const Span ys = pixel_span(std::min({p0.y, p1.y, p2.y}), std::max({p0.y, p1.y, p2.y}), h_);
@@ -189,44 +242,80 @@ void Rasterizer::draw_mesh(const Points& V, const Triangles& F, const Points& N,
     const double w0 = perspective ? 1.0 / p0.depth : 1.0;
     const double w1 = perspective ? 1.0 / p1.depth : 1.0;
     const double w2 = perspective ? 1.0 / p2.depth : 1.0;
-    const Vec3 c0 = base_colour(i0), c1 = base_colour(i1), c2 = base_colour(i2);
-    Vec3 n0 = ng, n1 = ng, n2 = ng;
-    if (style.smooth) {
-      n0 = vn.row(i0);
-      n1 = vn.row(i1);
-      n2 = vn.row(i2);
-    }
-
+    // The edge functions are linear in the pixel position: step them along each row.
+    const double inv_area = 1.0 / area;
+    const Linear e0 = edge_function(p1, p2, inv_area), e1 = edge_function(p2, p0, inv_area),
+                 e2 = edge_function(p0, p1, inv_area);
+    // Orthographic: the depth is linear in the pixel position too.
+    const Linear ez{e0.dx * p0.depth + e1.dx * p1.depth + e2.dx * p2.depth,
+                    e0.dy * p0.depth + e1.dy * p1.depth + e2.dy * p2.depth,
+                    e0.c * p0.depth + e1.c * p1.depth + e2.c * p2.depth};
     for (int y = ys.lo; y <= ys.hi; ++y) {
       const double py = y + 0.5;
-      for (int x = xs.lo; x <= xs.hi; ++x) {
-        const double px = x + 0.5;
-        double b0 = edge(p1, p2, px, py) / area;
-        double b1 = edge(p2, p0, px, py) / area;
-        double b2 = edge(p0, p1, px, py) / area;
+      const double x_start = xs.lo + 0.5;
+      double a0 = e0.at(x_start, py), a1 = e1.at(x_start, py), a2 = e2.at(x_start, py), az = ez.at(x_start, py);
+      for (int x = xs.lo; x <= xs.hi; ++x, a0 += e0.dx, a1 += e1.dx, a2 += e2.dx, az += ez.dx) {
+        double b0 = a0, b1 = a1, b2 = a2;
         if (b0 < 0 || b1 < 0 || b2 < 0) continue;
-        // Perspective-correct barycentrics (identity for orthographic).
-        b0 *= w0;
-        b1 *= w1;
-        b2 *= w2;
+        double depth = az;
+        if (perspective) {  // perspective-correct barycentrics
+          b0 *= w0;
+          b1 *= w1;
+          b2 *= w2;
+          const double sum = b0 + b1 + b2;
+          depth = (b0 * p0.depth + b1 * p1.depth + b2 * p2.depth) / sum;
+        }
+        const size_t idx = static_cast<size_t>(y) * w_ + x;
+        if (!(depth < depth_[idx])) continue;
+        depth_[idx] = static_cast<float>(depth);
+        winner[idx] = static_cast<std::int32_t>(t);
+        bx0 = std::min(bx0, x);
+        bx1 = std::max(bx1, x);
+        by0 = std::min(by0, y);
+        by1 = std::max(by1, y);
+      }
+    }
+  }
+
+  for (int y = by0; y <= by1; ++y) {
+    const double py = y + 0.5;
+    for (int x = bx0; x <= bx1; ++x) {
+      const size_t idx = static_cast<size_t>(y) * w_ + x;
+      const std::int32_t t = winner[idx];
+      if (t < 0) continue;
+      const Tri& tri = tris[static_cast<size_t>(t)];
+      const Index i0 = F(t, 0), i1 = F(t, 1), i2 = F(t, 2);
+      const Projected &p0 = P[i0], &p1 = P[i1], &p2 = P[i2];
+      const double px = x + 0.5;
+      const double inv_area = 1.0 / tri.area;
+      double b0 = edge(p1, p2, px, py) * inv_area;
+      double b1 = edge(p2, p0, px, py) * inv_area;
+      double b2 = edge(p0, p1, px, py) * inv_area;
+      if (perspective) {  // perspective-correct barycentrics (orthographic: they sum to 1 already)
+        b0 /= p0.depth;
+        b1 /= p1.depth;
+        b2 /= p2.depth;
         const double sum = b0 + b1 + b2;
         b0 /= sum;
         b1 /= sum;
         b2 /= sum;
-        const double depth = b0 * p0.depth + b1 * p1.depth + b2 * p2.depth;
-        const size_t idx = static_cast<size_t>(y) * w_ + x;
-        if (!(depth < depth_[idx])) continue;
-        Vec3 n = b0 * n0 + b1 * n1 + b2 * n2;
-        if (!(n.squaredNorm() > 0)) n = ng;
-        n.normalize();
-        if (!front) n = -n;
-        // Interpolated normals may turn away at silhouettes; keep them facing the viewer.
-        const Vec3 view = perspective ? Vec3((camera_.eye - (b0 * v0 + b1 * v1 + b2 * v2)).normalized()) : Vec3(-f);
-        if (n.dot(view) < 0) n = (n - 1.0 * n.dot(view) * view).normalized();
-        const Vec3 base = b0 * c0 + b1 * c1 + b2 * c2;
-        depth_[idx] = static_cast<float>(depth);
-        colour_.set(x, y, scale_rgb(shade(base, n, front, light, style)));
       }
+      const Vec3& ng = tri.ng;
+      Vec3 n = ng;
+      if (style.smooth) {
+        n = b0 * Vec3(vn.row(i0)) + b1 * Vec3(vn.row(i1)) + b2 * Vec3(vn.row(i2));
+        if (!(n.squaredNorm() > 0)) n = ng;
+      }
+      n.normalize();
+      if (!tri.front) n = -n;
+      // Interpolated normals may turn away at silhouettes; keep them facing the viewer.
+      const Vec3 view = perspective ? Vec3((camera_.eye - (b0 * Vec3(V.row(i0)) + b1 * Vec3(V.row(i1)) +
+                                                             b2 * Vec3(V.row(i2))))
+                                               .normalized())
+                                    : Vec3(-f);
+      if (n.dot(view) < 0) n = (n - 1.0 * n.dot(view) * view).normalized();
+      const Vec3 base = b0 * base_colour(i0) + b1 * base_colour(i1) + b2 * base_colour(i2);
+      colour_.set(x, y, scale_rgb(shade(base, n, tri.front, light, style)));
     }
   }
 }
@@ -237,6 +326,7 @@ bool Rasterizer::overlay_visible_at(int x, int y, double depth) const {
 }
 
 void Rasterizer::paint_overlay(int x, int y, Rgb colour, bool visible, double alpha, bool allow_hidden) {
+  if (ink_.empty()) ink_.assign(static_cast<size_t>(w_) * h_, 0);  // on the first overlay pixel only
   const size_t idx = static_cast<size_t>(y) * w_ + x;
   if (visible) {
     if (alpha >= 1.0) {

@@ -115,7 +115,7 @@ class Rasterizer {
   int h_ = 0;
   Image colour_;
   std::vector<float> depth_;        // +inf where empty
-  std::vector<std::uint32_t> ink_;  // overlay marks: 0 none, kVisibleInk, else the draw call id
+  std::vector<std::uint32_t> ink_;  // overlay marks: 0 none, kVisibleInk, else the draw call id (allocated on first use)
   std::uint32_t call_id_ = 0;
 };
 

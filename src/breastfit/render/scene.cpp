@@ -207,6 +207,11 @@ void draw_labels(Image& img, const Scene& scene, const Rasterizer& raster, const
   }
 }
 
+/// The view caption ("front view"), bottom right.
+std::string view_caption(const RenderOptions& o) {
+  return o.view_caption ? *o.view_caption : std::string(view_name(o.view)) + " view";
+}
+
 void draw_orientation(Image& img, const Camera& cam, const RenderOptions& o) {
   const int s = text_scale_of(o);
   const Eigen::Matrix3d A = o.body_to_world.topLeftCorner<3, 3>();
@@ -232,35 +237,86 @@ void draw_orientation(Image& img, const Camera& cam, const RenderOptions& o) {
     break;
   }
   // View caption, bottom right.
-  const std::string caption = std::string(view_name(o.view)) + " view";
+  const std::string caption = view_caption(o);
   const TextSize cs = text_size(caption, s);
   draw_text(img, o.width - pad_of(o) - cs.width, o.height - pad_of(o) - cs.height, caption, {120, 120, 120}, s);
 }
 
-void draw_legend(Image& img, const Scene& scene, const RenderOptions& o) {
+/// The legend's entries: the first polyline of each name, in scene order.
+std::vector<const ScenePolyline*> legend_entries(const Scene& scene, const RenderOptions& o) {
   std::vector<const ScenePolyline*> entries;
+  if (!o.show_legend) return entries;
   std::set<std::string> seen;
   for (const auto& l : scene.polylines)
     if (!l.name.empty() && seen.insert(l.name).second) entries.push_back(&l);
-  if (entries.empty()) return;
+  return entries;
+}
+
+/// Where the legend's entries go: flowed left to right in rows across the bottom of the image,
+/// the view caption at the right end of the last row (or on a row of its own when it does not
+/// fit there), inside a band that the framing keeps clear of the scene.
+struct LegendLayout {
+  Rect box{0, 0, 0, 0};                     ///< the entries, background box included
+  int band_top = 0;                          ///< top of the band kept clear (entries and caption)
+  std::vector<std::pair<int, int>> origins;  ///< top-left of each entry's swatch row
+  int swatch = 0;
+};
+
+LegendLayout legend_layout(const std::vector<const ScenePolyline*>& entries, const RenderOptions& o) {
+  LegendLayout L;
+  if (entries.empty()) return L;
   const int s = text_scale_of(o);
   const int pad = pad_of(o);
   const int line_h = kLineHeight * s + 2 * s;
-  const int swatch = 14 * s;
-  int text_w = 0;
-  for (const auto* e : entries) text_w = std::max(text_w, text_size(e->name, s).width);
-  const int box_w = swatch + 3 * s + text_w;
-  const int box_h = static_cast<int>(entries.size()) * line_h - 2 * s;
-  const int x = pad + 2;
-  int y = o.height - pad - box_h;
-  img.fill_rect(x - s - 1, y - s - 1, x + box_w + s + 1, y + box_h + s + 1, {255, 255, 255}, 0.75);
+  L.swatch = 14 * s;
+  const int gap = 8 * s;
+  const int x0 = pad + 2;
+  const int right = std::max(x0 + 1, o.width - pad);
+  int x = x0, row = 0, widest = x0;
+  std::vector<std::pair<int, int>> cells;  // (x, row)
   for (const auto* e : entries) {
-    const int mid = y + (kGlyphHeight - 1) * s / 2;
-    const int th = std::max(2, static_cast<int>(std::lround(e->width_px)));
-    img.fill_rect(x, mid - th / 2, x + swatch, mid - th / 2 + th, e->colour);
-    draw_text(img, x + swatch + 3 * s, y, e->name, {30, 30, 30}, s);
-    y += line_h;
+    const int w = L.swatch + 3 * s + text_size(e->name, s).width;
+    if (x > x0 && x + w > right) {
+      x = x0;
+      ++row;
+    }
+    cells.emplace_back(x, row);
+    widest = std::max(widest, x + w);
+    x += w + gap;
   }
+  // The caption shares the last row when it fits right of the last entry.
+  const int caption_w = o.show_orientation ? text_size(view_caption(o), s).width + 2 * pad : 0;
+  const int caption_rows = caption_w > 0 && x + caption_w > right ? 1 : 0;  // x: after the last entry and a gap
+  const int rows = row + 1;
+  const int box_h = rows * line_h - 2 * s;
+  const int y0 = o.height - pad - box_h - caption_rows * line_h;
+  for (const auto& [cx, r] : cells) L.origins.emplace_back(cx, y0 + r * line_h);
+  L.box = {x0 - s - 1, y0 - s - 1, widest + s + 1, y0 + box_h + s + 1};
+  L.band_top = L.box.y0;
+  return L;
+}
+
+/// Pixels kept free at the bottom of the image for the legend.
+int legend_reserve(const Scene& scene, const RenderOptions& o) {
+  const LegendLayout L = legend_layout(legend_entries(scene, o), o);
+  if (L.origins.empty()) return 0;
+  return std::min(o.height - L.band_top + pad_of(o), o.height / 2);
+}
+
+void draw_legend(Image& img, const Scene& scene, const RenderOptions& o, std::vector<Rect>& occupied) {
+  const std::vector<const ScenePolyline*> entries = legend_entries(scene, o);
+  const LegendLayout L = legend_layout(entries, o);
+  if (entries.empty()) return;
+  const int s = text_scale_of(o);
+  img.fill_rect(L.box.x0, L.box.y0, L.box.x1, L.box.y1, {255, 255, 255}, 0.75);
+  for (size_t i = 0; i < entries.size(); ++i) {
+    const auto [x, y] = L.origins[i];
+    const int mid = y + (kGlyphHeight - 1) * s / 2;
+    const int th = std::max(2, static_cast<int>(std::lround(entries[i]->width_px)));
+    img.fill_rect(x, mid - th / 2, x + L.swatch, mid - th / 2 + th, entries[i]->colour);
+    draw_text(img, x + L.swatch + 3 * s, y, entries[i]->name, {30, 30, 30}, s);
+  }
+  occupied.push_back(L.box);
 }
 
 }  // namespace
@@ -310,23 +366,33 @@ Camera scene_camera(const Scene& scene, const RenderOptions& o) {
   if (const ScalarField* f = colorbar_field(scene, o)) reserve = colorbar_placement(colorbar_spec(*f), o).reserve;
   reserve = std::min(reserve, o.width / 3);
   const int top_reserve = std::min(title_bottom(o), o.height / 4);
-  const double aspect = static_cast<double>(o.width - reserve) / (o.height - top_reserve);
+  const int bottom_reserve = legend_reserve(scene, o);
+  const int free_h = o.height - top_reserve - bottom_reserve;
+  const double aspect = static_cast<double>(o.width - reserve) / free_h;
   Camera cam = frame_points(P, vd.forward, vd.up, aspect, o.margin, o.projection, o.fov_y_deg);
-  // frame_points filled a (width - reserve) × (height - top_reserve) viewport: enlarge the view
-  // to the whole image and shift it so that the scene sits left of the colour bar, below the title.
+  // frame_points filled a (width - reserve) × free_h viewport: enlarge the view to the whole
+  // image and shift it so that the scene sits left of the colour bar, between the title and the
+  // legend.
   const double depth = (cam.target - cam.eye).dot(cam.forward());
   if (cam.projection == Projection::Orthographic) {
-    cam.view_height *= static_cast<double>(o.height) / (o.height - top_reserve);
+    cam.view_height *= static_cast<double>(o.height) / free_h;
   } else {
-    const double k = static_cast<double>(o.height) / (o.height - top_reserve);
+    const double k = static_cast<double>(o.height) / free_h;
     const double t = std::tan(0.5 * cam.fov_y_deg * 3.14159265358979323846 / 180.0);
     cam.fov_y_deg = 2.0 * std::atan(t * k) * 180.0 / 3.14159265358979323846;
   }
   const double wpp = cam.world_per_pixel(depth, o.height);
-  const Vec3 shift = cam.right() * (0.5 * reserve * wpp) + cam.true_up() * (0.5 * top_reserve * wpp);
+  const Vec3 shift =
+      cam.right() * (0.5 * reserve * wpp) + cam.true_up() * (0.5 * (top_reserve - bottom_reserve) * wpp);
   cam.eye += shift;
   cam.target += shift;
   return cam;
+}
+
+std::optional<Eigen::AlignedBox2i> legend_box(const Scene& scene, const RenderOptions& o) {
+  const LegendLayout L = legend_layout(legend_entries(scene, o), o);
+  if (L.origins.empty()) return std::nullopt;
+  return Eigen::AlignedBox2i(Eigen::Vector2i(L.box.x0, L.box.y0), Eigen::Vector2i(L.box.x1, L.box.y1));
 }
 
 Image render_scene(const Scene& scene, const RenderOptions& o) {
@@ -396,25 +462,11 @@ Image render_scene(const Scene& scene, const RenderOptions& o) {
     draw_colorbar(img, x, y, cp.bar_width, cp.bar_height, spec, s);
     occupied.push_back({x - pad, y - pad, x + cp.layout.width + pad, y + cp.layout.height + pad});
   }
+  if (o.show_legend) draw_legend(img, scene, o, occupied);
   if (o.show_labels) draw_labels(img, scene, raster, o, occupied);
-  if (o.show_legend) draw_legend(img, scene, o);
   if (o.show_orientation) draw_orientation(img, cam, o);
   if (!o.title.empty()) draw_text(img, pad, pad, title_text(o), {20, 20, 20}, title_scale(o));
   return img;
-}
-
-Rgb palette_colour(size_t index) {
-  static constexpr std::array<Rgb, 8> kPalette = {{
-      {20, 90, 200},   // blue
-      {230, 110, 0},   // orange
-      {0, 150, 70},    // green
-      {200, 30, 130},  // magenta
-      {120, 60, 200},  // purple
-      {0, 160, 175},   // teal
-      {170, 130, 0},   // ochre
-      {90, 90, 90},    // grey
-  }};
-  return kPalette[index % kPalette.size()];
 }
 
 }  // namespace breastfit::render

@@ -91,10 +91,13 @@ struct RenderOptions {
   bool show_hidden = true;             ///< draw hidden curves/points dimmed (else omit them)
   double hidden_alpha = 0.3;           ///< opacity of hidden overlays
   bool show_labels = true;             ///< point labels
-  bool show_legend = true;             ///< named polylines listed bottom-left
+  bool show_legend = true;             ///< named polylines listed along the bottom, kept clear of the scene
   bool show_colorbar = true;           ///< when a mesh has scalars
   bool show_orientation = true;        ///< R/L (or A/P) letters at the image sides
   std::string title;                   ///< top-left caption line; empty = none
+  /// Bottom-right caption (with show_orientation); default "<view name> view". Say when the
+  /// orientation is not known, e.g. "view: orientation unknown".
+  std::optional<std::string> view_caption;
   int text_scale = 0;                  ///< font scale; 0 = automatic (1 per 512 px of the smaller side)
   std::optional<Camera> camera;        ///< overrides the view and the framing
   std::optional<Eigen::AlignedBox3d> frame;  ///< region to frame; default: Scene::bounds()
@@ -107,11 +110,12 @@ struct RenderOptions {
 /// \throws InvalidInput if there is nothing to frame.
 Camera scene_camera(const Scene& scene, const RenderOptions& options);
 
+/// The legend's box in image pixels ([min, max) corners), or nullopt without a legend. The
+/// framing (scene_camera) keeps the scene out of it: the legend never covers the body.
+std::optional<Eigen::AlignedBox2i> legend_box(const Scene& scene, const RenderOptions& options);
+
 /// Renders the scene. Deterministic: the same inputs give identical pixels (and PNG bytes).
 /// \throws InvalidInput for invalid options, mismatched scalar/colour sizes or an empty scene.
 Image render_scene(const Scene& scene, const RenderOptions& options = {});
-
-/// A palette of distinct, readable overlay colours (cycled by index).
-Rgb palette_colour(size_t index);
 
 }  // namespace breastfit::render

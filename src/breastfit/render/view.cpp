@@ -30,6 +30,12 @@ ViewDirections view_directions(View view, const Eigen::Matrix4d& body_to_world) 
     case View::Oblique:
       forward = Vec3(1, 1, 0).normalized();
       break;
+    case View::SideLeft:
+      forward = Vec3(-1, 0, 0);
+      break;
+    case View::ObliqueLeft:
+      forward = Vec3(-1, 1, 0).normalized();
+      break;
     case View::Back:
       forward = Vec3(0, -1, 0);
       break;
@@ -49,6 +55,10 @@ std::string_view view_name(View view) {
       return "side";
     case View::Oblique:
       return "oblique";
+    case View::SideLeft:
+      return "side-left";
+    case View::ObliqueLeft:
+      return "oblique-left";
     case View::Back:
       return "back";
     case View::Top:
@@ -57,12 +67,21 @@ std::string_view view_name(View view) {
   return "front";
 }
 
-View view_from_name(std::string_view name) {
-  for (View v : {View::Front, View::Side, View::Oblique, View::Back, View::Top})
-    if (view_name(v) == name) return v;
-  throw InvalidInput("unknown view '" + std::string(name) + "' (known: front, side, oblique, back, top)");
+std::vector<View> all_views() {
+  return {View::Front, View::Side, View::Oblique, View::SideLeft, View::ObliqueLeft, View::Back, View::Top};
 }
 
-std::vector<View> default_views() { return {View::Front, View::Side, View::Oblique}; }
+View view_from_name(std::string_view name) {
+  if (name == "side-right") return View::Side;
+  if (name == "oblique-right") return View::Oblique;
+  std::string known;
+  for (View v : all_views()) {
+    if (view_name(v) == name) return v;
+    known += (known.empty() ? "" : ", ") + std::string(view_name(v));
+  }
+  throw InvalidInput("unknown view '" + std::string(name) + "' (known: " + known + ")");
+}
+
+std::vector<View> default_views() { return {View::Front, View::Side, View::SideLeft, View::Oblique, View::ObliqueLeft}; }
 
 }  // namespace breastfit::render

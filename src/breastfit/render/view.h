@@ -17,6 +17,8 @@ enum class View {
   Side,     ///< from the patient's right side (camera at −x, looking +x), superior up; anterior
             ///< appears on the viewer's right
   Oblique,  ///< 45° between Front and Side (camera front-right), superior up
+  SideLeft,     ///< from the patient's left side (camera at +x, looking −x); anterior on the left
+  ObliqueLeft,  ///< 45° between Front and SideLeft (camera front-left), superior up
   Back,     ///< from the posterior side (camera at +y), superior up
   Top,      ///< from above (camera at +z, looking −z), anterior up in the image
 };
@@ -33,11 +35,15 @@ struct ViewDirections {
 /// \throws InvalidInput if the linear part is singular or not finite.
 ViewDirections view_directions(View view, const Eigen::Matrix4d& body_to_world = Eigen::Matrix4d::Identity());
 
-/// "front", "side", "oblique", "back", "top".
+/// "front", "side", "oblique", "side-left", "oblique-left", "back", "top" (side and oblique are
+/// the patient's right).
 std::string_view view_name(View view);
-/// Inverse of view_name. \throws InvalidInput for an unknown name, listing the known ones.
+/// Inverse of view_name (also accepts "side-right", "oblique-right").
+/// \throws InvalidInput for an unknown name, listing the known ones.
 View view_from_name(std::string_view name);
-/// The views written by `--view all`: Front, Side, Oblique.
+/// Every view: Front, Back, Top and the sides and obliques.
+std::vector<View> all_views();
+/// The views written by `--view all`: Front, Side, SideLeft, Oblique, ObliqueLeft.
 std::vector<View> default_views();
 
 }  // namespace breastfit::render

@@ -100,12 +100,7 @@ std::string token(const std::string& name) {
 
 }  // namespace
 
-Rgb drawing_color(const std::string& name) {
-  if (name.rfind("breast_contour", 0) == 0) return {20, 60, 220};   // blue
-  if (name.rfind("imf", 0) == 0) return {0, 160, 60};               // green
-  if (name.rfind("sternum", 0) == 0) return {200, 20, 20};          // red
-  return {150, 0, 170};                                             // purple: anything else
-}
+Rgb drawing_color(const std::string& name, size_t index) { return mesh::drawing_colour(name, index); }
 
 void write_drawings_ply(const fs::path& path, const std::vector<TransferredCurve>& curves, double from_mm) {
   check_factor(from_mm);
@@ -126,8 +121,9 @@ void write_drawings_ply(const fs::path& path, const std::vector<TransferredCurve
   f << "element vertex " << nv << "\nproperty double x\nproperty double y\nproperty double z\n"
     << "property uchar red\nproperty uchar green\nproperty uchar blue\n"
     << "element edge " << ne << "\nproperty int vertex1\nproperty int vertex2\nend_header\n";
-  for (const auto& c : curves) {
-    const Rgb col = drawing_color(c.name);
+  for (size_t k = 0; k < curves.size(); ++k) {
+    const auto& c = curves[k];
+    const Rgb col = drawing_color(c.name, k);
     for (Eigen::Index i = 0; i < c.points.rows(); ++i)
       f << num(c.points(i, 0) * from_mm) << " " << num(c.points(i, 1) * from_mm) << " " << num(c.points(i, 2) * from_mm)
         << " " << int(col[0]) << " " << int(col[1]) << " " << int(col[2]) << "\n";
@@ -205,7 +201,7 @@ TriangleMesh paint_drawings(const TriangleMesh& scan_mm, const std::vector<Trans
     int top = -1;
     for (Index i : near) top = std::max(top, owner[static_cast<size_t>(i)]);
     if (top < 0) continue;
-    const Rgb col = drawing_color(curves[static_cast<size_t>(top)].name);
+    const Rgb col = drawing_color(curves[static_cast<size_t>(top)].name, static_cast<size_t>(top));
     out.C.row(v) << col[0], col[1], col[2];
   }
   return out;

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <vector>
 
+#include "breastfit/mesh/drawing_palette.h"
 #include "breastfit/mesh/triangle_mesh.h"
 #include "breastfit/transfer/drawing_transfer.h"
 
@@ -17,8 +18,9 @@ namespace breastfit::transfer {
 
 using Rgb = std::array<std::uint8_t, 3>;
 
-/// A fixed colour per drawing name (contours, folds, sternum, others), for PLY and painting.
-Rgb drawing_color(const std::string& name);
+/// The colour of a drawing for PLY and painting: mesh::drawing_colour (the one palette of the
+/// figures, `render` and the workstation), by kind; other drawings by `index` in `curves`.
+Rgb drawing_color(const std::string& name, size_t index = 0);
 
 /// Writes the curves as an ASCII PLY: `element vertex` (x y z as double, red green blue per
 /// curve), then `element edge` (vertex1 vertex2), a closed curve with its closing edge; one

@@ -1,0 +1,25 @@
+#pragma once
+/// \file A fast PNG encoder for 8-bit RGB images (the report's figures, `breastfit render`):
+/// one row filter for every row and zlib at a low level, which for rendered torsos is several
+/// times faster than stb_image_write's built-in deflate at a similar size.
+#include <cstdint>
+#include <vector>
+
+namespace breastfit::render {
+
+/// The PNG row filters (PNG specification §9.2).
+enum class PngFilter : std::uint8_t { None = 0, Sub = 1, Up = 2, Average = 3, Paeth = 4 };
+
+struct PngEncodeOptions {
+  int zlib_level = 2;                 ///< 0 (store) … 9 (smallest, slowest)
+  PngFilter filter = PngFilter::Sub;  ///< applied to every row
+};
+
+/// `width` × `height` packed RGB8 pixels (row 0 at the top) as PNG bytes: signature, IHDR
+/// (8-bit truecolour, no interlace), one IDAT, IEND. Deterministic.
+/// \throws InvalidInput for non-positive sizes, a pixel buffer of the wrong size or an invalid
+///         zlib level; std::runtime_error if zlib fails.
+std::vector<std::uint8_t> encode_png_rgb8(const std::vector<std::uint8_t>& rgb, int width, int height,
+                                          const PngEncodeOptions& options = {});
+
+}  // namespace breastfit::render
