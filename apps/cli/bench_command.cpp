@@ -82,7 +82,7 @@ std::vector<double> time_suggests(const std::filesystem::path& dir, const std::s
 
 void register_bench(CLI::App& app, int& exit_code) {
   struct Args {
-    std::string dir, template_path, config, json_out;
+    std::string dir, template_path, template_mesh, config, json_out;
     int repeat = 5;
     bool no_landmarks = false, refit = false, suggest = false;
     FitFlags fit;
@@ -102,12 +102,13 @@ void register_bench(CLI::App& app, int& exit_code) {
   sub->add_flag("--suggest", args->suggest,
                 "time the workstation's Suggest: the 12 landmarks found on the open scan (server time, ms)");
   sub->add_option("--template,-t", args->template_path, "rigged template (.glb/.gltf)");
+  sub->add_option("--mesh", args->template_mesh, "the template's skinned mesh to use when its file has several (node or mesh name)");
   sub->add_option("--config", args->config, "JSON file with fit options");
   sub->add_option("--json", args->json_out, "also write every number to this JSON file");
   add_fit_flags(*sub, args->fit);
   sub->callback([args, &exit_code] {
     if (args->refit && args->suggest) throw InvalidInput("bench: --refit and --suggest time different things: choose one");
-    const auto model = std::make_shared<const model::RiggedModel>(load_template(args->template_path));
+    const auto model = std::make_shared<const model::RiggedModel>(load_template(args->template_path, args->template_mesh));
     auto options = load_fit_options(args->config, args->fit);
     if (args->no_landmarks) options.use_landmarks = false;
     nlohmann::json cases = nlohmann::json::array();

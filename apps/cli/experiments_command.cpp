@@ -15,6 +15,7 @@
 #include "breastfit/experiments/experiment_suite_json.h"
 #include "breastfit/experiments/sweeps_markdown_json.h"
 #include "breastfit/experiments/table1_markdown_json.h"
+#include "breastfit/io/output_set.h"
 #include "command_support.h"
 #include "commands.h"
 #include "exit_codes.h"
@@ -168,10 +169,15 @@ void register_experiments(CLI::App& app, int& exit_code) {
       j = run_suite(*args, progress, referee_failed);
       num_cases = j["cases"].size();
       j["command_wall_time_s_before_plots"] = wall.seconds();
-      write_text(out / "experiments.json", j.dump(1) + "\n");
     }
-    write_text(out / "table1.md", experiments::table1_markdown(j));
-    write_text(out / "sweeps.md", experiments::sweeps_markdown(j));
+    // The tables and experiments.json as one set (io/output_set.h), experiments.json last.
+    std::vector<fs::path> files = {out / "table1.md", out / "sweeps.md"};
+    if (!args->report_only) files.push_back(out / "experiments.json");
+    io::OutputSet set = io::loose_file_set(files);
+    write_text(set.path("table1.md"), experiments::table1_markdown(j));
+    write_text(set.path("sweeps.md"), experiments::sweeps_markdown(j));
+    if (!args->report_only) write_text(set.path("experiments.json"), j.dump(1) + "\n");
+    set.commit();
 
     std::string plots = "plots skipped (--no-plots)";
     if (!args->no_plots) {

@@ -11,6 +11,7 @@
 #include "breastfit/core/errors.h"
 #include "breastfit/fit/scan_target.h"
 #include "breastfit/io/io.h"
+#include "breastfit/io/output_set.h"
 #include "breastfit/io/markups.h"
 #include "breastfit/pipeline/scan_input.h"
 #include "breastfit/transfer/fit_directory.h"
@@ -25,7 +26,7 @@ namespace fs = std::filesystem;
 
 void register_map(CLI::App& app, int& exit_code) {
   struct Args {
-    std::string from, to, input, out, template_path, to_scan, confidence;
+    std::string from, to, input, out, template_path, template_mesh, to_scan, confidence;
     double max_distance = 10.0;
     bool force = false, quiet = false;
   };
@@ -40,6 +41,7 @@ void register_map(CLI::App& app, int& exit_code) {
   sub->add_option("--to-scan", args->to_scan,
                   "scan B (.ply .obj .stl .vtk .vtp): project the mapped points onto it (default: onto fitted B)");
   sub->add_option("--template,-t", args->template_path, "the template both fits used; default: the shipped torso");
+  sub->add_option("--mesh", args->template_mesh, "the template's skinned mesh to use when its file has several (node or mesh name)");
   sub->add_option("--confidence", args->confidence,
                   "per-point confidence JSON (default: OUT with .mrk.json replaced by .confidence.json)");
   sub->add_option("--max-distance", args->max_distance, "projection onto scan B: farthest scan point used, mm")
@@ -58,7 +60,7 @@ void register_map(CLI::App& app, int& exit_code) {
     }
     for (const std::string& p : {args->out, conf}) check_output_file(p, {args->input}, args->force);
 
-    const model::RiggedModel model = load_template(args->template_path);
+    const model::RiggedModel model = load_template(args->template_path, args->template_mesh);
     const transfer::FitDirectory a = transfer::read_fit_directory(args->from, &model);
     const transfer::FitDirectory b = transfer::read_fit_directory(args->to, &model);
     const Markups input = read_markups_warning(args->input).markups;  // LPS mm
@@ -82,17 +84,32 @@ void register_map(CLI::App& app, int& exit_code) {
     io::MarkupsWriteOptions wo;
     wo.units = b.units;
     wo.points_name = "mapped";
-    io::write_markups(args->out, r.markups, wo);
     nlohmann::json j = transfer::to_json(r);
     j["from"] = args->from;
     j["to"] = args->to;
     j["input"] = args->input;
     j["output"] = args->out;
     j["scan_b"] = args->to_scan.empty() ? nlohmann::json(nullptr) : nlohmann::json(args->to_scan);
-    std::ofstream f(conf);
-    if (!f) throw IoError(conf, "cannot open for writing");
-    f << j.dump(1) << "\n";
-    if (!f) throw IoError(conf, "write failed");
+    const auto write_confidence = [&](const fs::path& path) {
+      std::ofstream f(path);
+      if (!f) throw IoError(conf, "cannot open for writing");
+      f << j.dump(1) << "\n";
+      if (!f) throw IoError(conf, "write failed");
+    };
+    // Both files as one set (io/output_set.h), the markups last: a failure leaves neither.
+    const fs::path out_path = fs::absolute(args->out).lexically_normal(), conf_path = fs::absolute(conf).lexically_normal();
+    if (out_path.parent_path() == conf_path.parent_path()) {
+      io::OutputSet set = io::loose_file_set({conf_path, out_path});
+      write_confidence(set.path(conf_path.filename().string()));
+      io::write_markups(set.path(out_path.filename().string()), r.markups, wo);
+      set.commit();
+    } else {
+      io::OutputSet conf_set = io::loose_file_set({conf_path}), out_set = io::loose_file_set({out_path});
+      write_confidence(conf_set.path(conf_path.filename().string()));
+      io::write_markups(out_set.path(out_path.filename().string()), r.markups, wo);
+      conf_set.commit();
+      out_set.commit();
+    }
 
     if (!args->quiet) {
       const auto& s = j["summary"];

@@ -83,6 +83,7 @@ void register_register(CLI::App& app, int& exit_code) {
                 << result.fit.summary.initialization_detail << "\n";
     for (const auto& w : result.warnings) std::cerr << "breastfit: warning: " << w << "\n";
     if (!args->quiet) print_register_summary(std::cout, result, args->out, output_options.report_html);
+    if (!result.plausibility.plausible) exit_code = kExitImplausible;
   });
 }
 

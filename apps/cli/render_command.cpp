@@ -13,6 +13,7 @@
 #include "breastfit/io/io.h"
 #include "breastfit/io/landmarks_io.h"
 #include "breastfit/io/markups.h"
+#include "breastfit/io/output_set.h"
 #include "breastfit/mesh/units.h"
 #include "breastfit/model/gltf_io.h"
 #include "breastfit/model/template_library.h"
@@ -22,6 +23,7 @@
 #include "breastfit/render/scene.h"
 #include "breastfit/render/torso_overlays.h"
 #include "breastfit/template/default_template.h"
+#include "command_support.h"
 #include "commands.h"
 #include "file_warnings.h"
 
@@ -33,7 +35,7 @@ namespace fs = std::filesystem;
 
 struct RenderArgs {
   std::string mesh;
-  std::string template_file;
+  std::string template_file, template_mesh;
   bool use_template = false;
   std::string landmarks;
   std::string placed;
@@ -175,6 +177,7 @@ void run_render(const RenderArgs& a) {
   if (a.size < 16 || a.size > 8192) throw InvalidInput("render: --size must be in [16, 8192], got " + std::to_string(a.size));
   if (a.use_template == !a.mesh.empty())
     throw InvalidInput("render: give either a MESH file or --template [FILE], not both / neither");
+  if (!a.template_mesh.empty() && !a.use_template) throw InvalidInput("render: --mesh NAME chooses a template's mesh: give --template too");
   if (a.frame != "auto" && a.frame != "landmarks" && a.frame != "axes" && a.frame != "identity")
     throw InvalidInput("render: --frame must be auto, landmarks, axes or identity, got '" + a.frame + "'");
   const OverlaySizes sizes(a.size);
@@ -194,9 +197,10 @@ void run_render(const RenderArgs& a) {
 
   if (a.use_template) {
     model::RiggedModel model;
-    if (!a.template_file.empty()) {
-      model = model::load_gltf(a.template_file);
-      what = fs::path(a.template_file).filename().string();
+    if (!a.template_file.empty() || !a.template_mesh.empty()) {
+      model = load_template(a.template_file, a.template_mesh);
+      what = a.template_file.empty() ? "default template" : fs::path(a.template_file).filename().string();
+      if (!a.template_mesh.empty()) what += " (mesh " + a.template_mesh + ")";
     } else {
       model = default_template(what);
     }
@@ -267,21 +271,19 @@ void run_render(const RenderArgs& a) {
   opt.body_to_world = body_to_world;
   opt.show_labels = !a.no_labels;
   opt.show_hidden = !a.no_hidden;
-  for (render::View v : views) {
-    opt.view = v;
+  std::vector<fs::path> paths;  // written as one set: all views or none (io/output_set.h)
+  for (render::View v : views) paths.push_back(output_path(a.out, v, views.size() == 1));
+  io::OutputSet set = io::loose_file_set(paths);
+  for (size_t k = 0; k < views.size(); ++k) {
+    opt.view = views[k];
     opt.title = a.title.empty() ? what : a.title;
     if (!orientation_known) opt.view_caption = "view: orientation unknown";
-    const render::Image img = render::render_scene(scene, opt);
-    const fs::path path = output_path(a.out, v, views.size() == 1);
-    if (path.has_parent_path()) {
-      std::error_code ec;
-      fs::create_directories(path.parent_path(), ec);
-      if (ec) throw IoError(path.parent_path().string(), "cannot create directory: " + ec.message());
-    }
-    img.save_png(path);
-    std::cout << "wrote " << path.string() << " (" << render::view_name(v) << ", " << a.size << "x" << a.size
-              << ")\n";
+    render::render_scene(scene, opt).save_png(set.path(paths[k].filename().string()));
   }
+  set.commit();
+  for (size_t k = 0; k < views.size(); ++k)
+    std::cout << "wrote " << paths[k].string() << " (" << render::view_name(views[k]) << ", " << a.size << "x" << a.size
+              << ")\n";
   std::cout << frame_note << "\n";
 }
 
@@ -295,6 +297,7 @@ void register_render(CLI::App& app, int& exit_code) {
                               "Render a rigged template (.gltf/.glb) with its landmarks and drawings on the rest "
                               "mesh; without FILE the built-in default template")
                   ->expected(0, 1);
+  sub->add_option("--mesh", args->template_mesh, "with --template: " "the template's skinned mesh to use when its file has several (node or mesh name)");
   sub->add_option("--landmarks,-l", args->landmarks, "Landmarks to draw (.mrk.json, .json, .csv)");
   sub->add_option("--placed", args->placed,
                   "Landmarks a person placed (e.g. register's input), drawn dark beside --landmarks (e.g. "

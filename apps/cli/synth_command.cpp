@@ -14,6 +14,7 @@
 #include "breastfit/synth/case_writer.h"
 #include "breastfit/synth/synth_case.h"
 #include "breastfit/template/default_template.h"
+#include "command_support.h"
 #include "commands.h"
 
 namespace breastfit::cli {
@@ -26,7 +27,7 @@ struct SynthArgs {
   std::uint64_t seed = 1;
   std::string pose = "standing";
   std::string units = "mm";
-  std::string template_file;
+  std::string template_file, template_mesh;
   int count = 1;
   bool force = false;
   bool quiet = false;
@@ -37,8 +38,8 @@ struct SynthArgs {
 };
 
 /// The shipped template when it exists, else the template built in memory (about a second).
-model::RiggedModel load_model(const std::string& path) {
-  if (!path.empty()) return model::load_gltf(path);
+model::RiggedModel load_model(const std::string& path, const std::string& mesh) {
+  if (!path.empty() || !mesh.empty()) return load_template(path, mesh);
   try {
     return model::load_default_template();
   } catch (const IoError&) {
@@ -85,7 +86,7 @@ void run(const SynthArgs& a) {
     if (!a.force && (fs::exists(dir / "scan.ply") || fs::exists(dir / "truth")))
       throw IoError(dir.string(), "a case already exists here (use --force to overwrite it)");
   }
-  const model::RiggedModel model = load_model(a.template_file);
+  const model::RiggedModel model = load_model(a.template_file, a.template_mesh);
   for (int i = 0; i < a.count; ++i) {
     const std::uint64_t seed = a.seed + static_cast<std::uint64_t>(i);
     const synth::PoseType pose = (i % 2 == 0) == (first_pose == synth::PoseType::Standing)
@@ -119,6 +120,7 @@ void register_synth(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   sub->add_option("--units", args->units, "units of the written files: mm or m")->capture_default_str();
   sub->add_option("--template,-t", args->template_file, "rigged template (.glb/.gltf); default: the shipped template");
+  sub->add_option("--mesh", args->template_mesh, "the template's skinned mesh to use when its file has several (node or mesh name)");
   sub->add_option("--count", args->count, "number of cases (DIR/synth_<seed>_<pose>)")->capture_default_str();
   sub->add_flag("--force", args->force, "overwrite existing cases");
   sub->add_flag("--quiet,-q", args->quiet, "print nothing on success");

@@ -3,6 +3,7 @@
 //   template build --out FILE         generate the default template and save it as glTF
 //   template pose [--template FILE] --params P.json --out MESH
 #include <cstdio>
+#include <fstream>
 #include <iostream>
 #include <sstream>
 
@@ -10,6 +11,7 @@
 
 #include "breastfit/core/errors.h"
 #include "breastfit/core/timer.h"
+#include "breastfit/fit/surface_detail.h"
 #include "breastfit/io/io.h"
 #include "breastfit/model/gltf_io.h"
 #include "breastfit/model/param_layout.h"
@@ -28,6 +30,33 @@ struct LoadedTemplate {
   std::filesystem::path path;
   model::RiggedModel model;
 };
+
+/// The surface detail a register params.json carries ("surface_detail": {"offsets_mm": [...]}),
+/// or nullopt. \throws InvalidInput when it is malformed or not one offset per vertex.
+std::optional<Eigen::VectorXd> read_surface_detail(const std::string& path, Index num_vertices) {
+  std::ifstream f(path);
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(f);
+  } catch (const nlohmann::json::exception&) {
+    return std::nullopt;  // read_params_json has already accepted the file: not JSON here cannot happen
+  }
+  if (!j.is_object() || !j.contains("surface_detail")) return std::nullopt;
+  const auto& d = j["surface_detail"];
+  if (!d.is_object() || !d.contains("offsets_mm") || !d["offsets_mm"].is_array())
+    throw InvalidInput(path + ": \"surface_detail\" has no \"offsets_mm\" array");
+  const auto& a = d["offsets_mm"];
+  if (static_cast<Index>(a.size()) != num_vertices)
+    throw InvalidInput(path + ": \"surface_detail\" has " + std::to_string(a.size()) + " offsets, the template " +
+                       std::to_string(num_vertices) + " vertices (parameters of another template?)");
+  Eigen::VectorXd out(num_vertices);
+  for (Index i = 0; i < num_vertices; ++i) {
+    if (!a[static_cast<size_t>(i)].is_number())
+      throw InvalidInput(path + ": \"surface_detail\" offset " + std::to_string(i) + " is not a number");
+    out[i] = a[static_cast<size_t>(i)].get<double>();
+  }
+  return out;
+}
 
 LoadedTemplate load(const std::string& file, const std::string& mesh = "") {
   LoadedTemplate t;
@@ -174,7 +203,8 @@ void register_template(CLI::App& app, int& exit_code) {
 
   // template pose
   struct PoseArgs {
-    std::string templ, params, out;
+    std::string templ, templ_mesh, params, out;
+    bool no_detail = false;
   };
   auto pose_args = std::make_shared<PoseArgs>();
   auto* pose = sub->add_subcommand("pose", "Pose a template with parameters from a JSON file and write the mesh");
@@ -183,15 +213,25 @@ void register_template(CLI::App& app, int& exit_code) {
                    "JSON object of parameter values by name, any subset (see `template info --json`)")
       ->required();
   pose->add_option("--out,-o", pose_args->out, "output mesh (.ply, .obj, .stl or .vtk), mm")->required();
+  pose->add_option("--mesh", pose_args->templ_mesh, "the skinned mesh to pose when the file has several (node or mesh name)");
+  pose->add_flag("--no-detail", pose_args->no_detail,
+                 "ignore the surface detail of a register params.json (the posed template alone; by default the "
+                 "offsets are applied, so the mesh is register's fitted.ply)");
   pose->callback([pose_args] {
-    const LoadedTemplate t = load(pose_args->templ);
+    const LoadedTemplate t = load(pose_args->templ, pose_args->templ_mesh);
     const model::PoseParams p = model::read_params_json(pose_args->params, t.model);
     TriangleMesh mesh;
     mesh.V = model::pose_vertices(t.model, p);
     mesh.F = t.model.rest.F;
+    const std::optional<Eigen::VectorXd> detail = read_surface_detail(pose_args->params, mesh.num_vertices());
+    if (detail && !pose_args->no_detail) mesh.V = fit::apply_surface_detail(mesh.V, mesh.F, *detail);
     io::write_mesh(pose_args->out, mesh);
     std::cout << "wrote " << pose_args->out << ": " << mesh.num_vertices() << " vertices, " << mesh.num_faces()
-              << " faces (mm)\n";
+              << " faces (mm); "
+              << (!detail ? "no surface detail in the parameters: the posed template"
+                  : pose_args->no_detail ? "surface detail of the parameters NOT applied (--no-detail): the posed template"
+                                         : "surface detail applied: register's fitted surface")
+              << "\n";
   });
   (void)exit_code;
 }

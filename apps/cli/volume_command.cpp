@@ -1,7 +1,8 @@
 // breastfit volume MESH --curves CURVES.mrk.json: the volume inside each closed curve drawn on a
 // surface (skin inside the curve against a chest-wall membrane spanning it), e.g. the breast
 // contour a surgeon drew on a scan, the contours `register` transferred onto its fit, or a
-// ground-truth surface with its contours (docs/TRANSFER.md "Breast measurements").
+// ground-truth surface with its contours (docs/TRANSFER.md "Breast measurements"). The surface
+// must be closed inside each curve: a hole there is refused (transfer::curve_volume).
 #include <cstdio>
 #include <fstream>
 #include <string>
@@ -31,7 +32,11 @@ void register_volume(CLI::App& app, int& exit_code) {
   auto* sub = app.add_subcommand(
       "volume", "Volume inside closed curves drawn on a surface (e.g. breast contours): the surface inside each "
                 "curve against a chest-wall fill spanning it");
-  sub->add_option("mesh", args->mesh, "surface (.ply .obj .stl .vtk .vtp triangle mesh; a scan, fitted.ply, ...)")->required();
+  sub->add_option("mesh", args->mesh,
+                  "surface (.ply .obj .stl .vtk .vtp triangle mesh) to measure on: closed inside each curve. "
+                  "fitted.ply of `breastfit register` gives report.json's volumes; a scan with a hole or open "
+                  "border inside a curve is refused (holes are not filled)")
+      ->required();
   sub->add_option("--curves,-c", args->curves, "closed curves on the surface (.mrk.json ClosedCurve, any units)")
       ->required();
   sub->add_option("--name", args->names, "measure only these curves (default: every closed curve)");

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "support/test_paths.h"
+#include "support/toy_model.h"
 
 namespace breastfit {
 namespace {
@@ -75,6 +76,23 @@ TEST(BenchCommand, RejectsANegativeThreadCount) {
   if (test::cli_path().empty()) GTEST_SKIP() << "CLI not built";
   std::string out;
   EXPECT_EQ(test::run_cli("bench '" + test::temp_dir().string() + "' --threads -1", &out), 2) << out;
+}
+
+TEST(BenchCommand, MeshChoosesOneSkinnedMeshOfATemplate) {
+  if (test::cli_path().empty()) GTEST_SKIP() << "CLI not built";
+  const fs::path tmp = test::temp_dir();
+  const fs::path two = test::save_two_mesh_toy(tmp);
+  std::string out;
+  ASSERT_EQ(test::run_cli("synth --quiet --holes 0 --seed 4 --template '" + two.string() + "' --mesh First --out '" +
+                              (tmp / "cases" / "c1").string() + "'",
+                          &out),
+            0)
+      << out;
+  const std::string common = "bench '" + (tmp / "cases").string() + "' -n 1 --template '" + two.string() + "'";
+  EXPECT_EQ(test::run_cli(common, &out), 4) << out;
+  EXPECT_NE(out.find("choose one with --mesh NAME"), std::string::npos) << out;
+  ASSERT_EQ(test::run_cli(common + " --mesh Second", &out), 0) << out;
+  EXPECT_TRUE(std::regex_search(out, std::regex(R"(c1\s+\d+\.\d+)"))) << out;
 }
 
 }  // namespace

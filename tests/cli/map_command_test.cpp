@@ -144,5 +144,21 @@ TEST(MapCommand, MapsToItselfAndToAnotherFit) {
             4);
 }
 
+TEST(MapCommand, MeshChoosesOneSkinnedMeshOfATemplate) {
+  if (test::cli_path().empty()) GTEST_SKIP() << "CLI not built";
+  const fs::path dir = test::temp_dir();
+  const fs::path two = test::save_two_mesh_toy(dir);
+  const model::RiggedModel loaded = model::load_gltf(two, "Second");
+  const FakeFit a = fake_fit(dir / "fit_a", loaded, 1, "mm");
+  io::write_markups(dir / "in.mrk.json", drawings_on(loaded, a.fitted_mm));
+  std::string out;
+  const std::string common = "map --quiet --from " + a.dir.string() + " --to " + a.dir.string() + " --template " +
+                             two.string() + " " + (dir / "in.mrk.json").string() + " --out " + (dir / "o.mrk.json").string();
+  EXPECT_EQ(test::run_cli(common, &out), 4) << out;
+  EXPECT_NE(out.find("choose one with --mesh NAME"), std::string::npos) << out;
+  ASSERT_EQ(test::run_cli(common + " --mesh Second", &out), 0) << out;
+  EXPECT_TRUE(fs::exists(dir / "o.mrk.json"));
+}
+
 }  // namespace
 }  // namespace breastfit

@@ -15,9 +15,11 @@
 
 #include "breastfit/io/file_sha256.h"
 #include "breastfit/io/io.h"
+#include "breastfit/mesh/subdivision.h"
 #include "breastfit/mesh/units.h"
 #include "breastfit/model/gltf_io.h"
 #include "support/test_paths.h"
+#include "support/test_shapes.h"
 #include "support/toy_model.h"
 
 namespace breastfit {
@@ -325,6 +327,69 @@ TEST(RegisterCommand, AFailingRunLeavesOnlyItsReportNeverTheStaleFit) {
                           &log),
             0);
   EXPECT_NE(log.find("not usable"), std::string::npos) << log;
+}
+
+// Shapes that are not a torso, made here: registered without landmarks they must not be "ok".
+// Either the fit is not usable (exit 5), or it is judged implausible (exit 7, every output
+// written, report.json "status": "implausible" with the problems), or the scan is refused (exit 3).
+TEST(RegisterCommand, ShapesThatAreNotATorsoAreNotReportedOk) {
+  if (test::cli_path().empty()) GTEST_SKIP() << "CLI not built";
+  const fs::path dir = test::temp_dir();
+  io::write_mesh(dir / "sphere.ply", test::sphere_mesh(160.0, Vec3::Zero(), 48, 96));
+  TriangleMesh box = test::cube_mesh(1.0);
+  box.V.col(0) *= 170.0;  // 340 x 500 x 220 mm
+  box.V.col(1) *= 250.0;
+  box.V.col(2) *= 110.0;
+  for (int k = 0; k < 4; ++k) box = mesh::subdivide(box, /*loop=*/false);  // ~10 mm triangles
+  io::write_mesh(dir / "box.ply", box);
+  // A torso at x0.4 and x0.15 of its size (in mm).
+  TriangleMesh torso = io::read_mesh(synth_case(5, "mm") / "scan.ply");
+  const Eigen::RowVector3d centre = torso.V.colwise().mean();
+  for (double k : {0.4, 0.15}) {
+    TriangleMesh small = torso;
+    small.V = ((torso.V.rowwise() - centre) * k).rowwise() + centre;
+    io::write_mesh(dir / ("torso_x" + std::to_string(static_cast<int>(k * 100)) + ".ply"), small);
+  }
+  for (const char* name : {"sphere", "box", "torso_x40", "torso_x15"}) {
+    const fs::path out = dir / (std::string(name) + "_out");
+    std::string log;
+    const int rc = test::run_cli("register '" + (dir / (std::string(name) + ".ply")).string() +
+                                     "' --units mm --quiet --no-report-html --out '" + out.string() + "'",
+                                 &log);
+    EXPECT_TRUE(rc == 3 || rc == 5 || rc == 7) << name << " exit " << rc << "\n" << log;
+    if (rc == 3) continue;  // refused before the fit, with its reason
+    const auto report = read_json(out / "report.json");
+    EXPECT_NE(report["status"], "ok") << name;
+    if (rc == 7) {
+      EXPECT_EQ(report["status"], "implausible") << name;
+      EXPECT_FALSE(report["plausibility"]["problems"].empty()) << name;
+      EXPECT_TRUE(fs::exists(out / "fitted.ply")) << name;
+      EXPECT_NE(log.find("implausible fit:"), std::string::npos) << log;
+    }
+    std::printf("%s: exit %d, status %s, problems %s, coverage %.2f\n", name, rc,
+                report["status"].get<std::string>().c_str(), report["plausibility"]["problems"].dump().c_str(),
+                report["scan_coverage"]["fraction"].get<double>());
+  }
+}
+
+TEST(RegisterCommand, ASyntheticTorsoIsPlausible) {
+  if (test::cli_path().empty()) GTEST_SKIP() << "CLI not built";
+  for (const int seed : {5, 6}) {
+    const fs::path c = synth_case(seed, "mm");
+    const fs::path out = test::temp_dir() / ("s" + std::to_string(seed));
+    std::string log;
+    ASSERT_EQ(test::run_cli("register '" + (c / "scan.ply").string() + "' --landmarks '" +
+                                (c / "landmarks.mrk.json").string() + "' --quiet --no-report-html --out '" +
+                                out.string() + "'",
+                            &log),
+              0)
+        << log;
+    const auto report = read_json(out / "report.json");
+    EXPECT_EQ(report["status"], "ok");
+    EXPECT_TRUE(report["plausibility"]["plausible"].get<bool>()) << report["plausibility"].dump();
+    EXPECT_GT(report["scan_coverage"]["fraction"].get<double>(), 0.3);
+    EXPECT_EQ(report["table1"]["surface_mm"]["n"].get<int>(), report["scan_coverage"]["covered_vertices"].get<int>());
+  }
 }
 
 }  // namespace

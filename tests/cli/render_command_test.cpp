@@ -8,6 +8,7 @@
 #include "breastfit/io/markups.h"
 #include "breastfit/render/image.h"
 #include "support/test_paths.h"
+#include "support/toy_model.h"
 
 namespace breastfit {
 namespace {
@@ -243,6 +244,37 @@ TEST(RenderCommand, DefaultTemplate) {
   int n = 0;
   mean_red_x(img, &n);
   EXPECT_GT(n, 20);  // the template's landmarks are drawn
+}
+
+TEST(RenderCommand, MeshChoosesOneSkinnedMeshOfATemplate) {
+  if (test::cli_path().empty()) GTEST_SKIP() << "CLI not built";
+  const fs::path dir = test::temp_dir();
+  const fs::path two = test::save_two_mesh_toy(dir);
+  std::string out;
+  const std::string common = "render --template '" + two.string() + "' --size 120 --out '" + (dir / "t.png").string() + "'";
+  EXPECT_EQ(test::run_cli(common, &out), 4) << out;
+  EXPECT_NE(out.find("choose one with --mesh NAME"), std::string::npos) << out;
+  ASSERT_EQ(test::run_cli(common + " --mesh Second", &out), 0) << out;
+  EXPECT_TRUE(fs::exists(dir / "t.png"));
+  EXPECT_EQ(test::run_cli("render --template '" + two.string() + "' --mesh Third --out '" + (dir / "u.png").string() + "'", &out), 4) << out;
+  EXPECT_NE(out.find("no skinned mesh named 'Third'"), std::string::npos) << out;
+}
+
+TEST(RenderCommand, AllViewsAreWrittenAsOneSetOrNotAtAll) {
+  if (test::cli_path().empty()) GTEST_SKIP() << "CLI not built";
+  const fs::path dir = test::temp_dir();
+  io::write_mesh(dir / "torso.ply", ellipsoid());
+  write_text(dir / "shot_front.png", "previous front");
+  fs::create_directories(dir / "shot_side.png");  // the second view cannot be written: a failure in the middle
+  std::string out;
+  const std::string cmd = "render '" + (dir / "torso.ply").string() + "' --view all --size 64 --out '" +
+                          (dir / "shot").string() + "'";
+  EXPECT_EQ(test::run_cli(cmd, &out), 4) << out;
+  EXPECT_NE(out.find("shot_side.png"), std::string::npos) << out;
+  EXPECT_EQ(test::file_bytes(dir / "shot_front.png"), "previous front");  // not a mixed set
+  EXPECT_FALSE(fs::exists(dir / "shot_oblique.png"));
+  for (const auto& e : fs::directory_iterator(dir))
+    EXPECT_EQ(e.path().filename().string().find(".breastfit-tmp-"), std::string::npos) << e.path();
 }
 
 }  // namespace

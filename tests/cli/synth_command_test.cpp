@@ -96,5 +96,17 @@ TEST(SynthCommand, BadValuesGiveOneLineErrors) {
   EXPECT_FALSE(fs::exists(dir / "x" / "scan.ply"));
 }
 
+TEST(SynthCommand, MeshChoosesOneSkinnedMeshOfATemplate) {
+  if (test::cli_path().empty()) GTEST_SKIP() << "CLI not built";
+  const fs::path dir = test::temp_dir();
+  const fs::path two = test::save_two_mesh_toy(dir);
+  std::string log;
+  const std::string common = "synth --seed 4 --template '" + two.string() + "'" + kToyFlags;
+  EXPECT_EQ(test::run_cli(common + " --out '" + (dir / "a").string() + "'", &log), 4) << log;
+  EXPECT_NE(log.find("choose one with --mesh NAME"), std::string::npos) << log;
+  ASSERT_EQ(test::run_cli(common + " --mesh Second --out '" + (dir / "b").string() + "'", &log), 0) << log;
+  EXPECT_TRUE(fs::is_regular_file(dir / "b" / "truth" / "meta.json"));
+}
+
 }  // namespace
 }  // namespace breastfit

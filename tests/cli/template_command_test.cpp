@@ -107,6 +107,37 @@ TEST(TemplateCommand, PoseWritesPosedMesh) {
   EXPECT_GT((posed.V - toy.rest.V).cwiseAbs().maxCoeff(), 10.0 - 1e-6);
 }
 
+TEST(TemplateCommand, PoseAppliesTheSurfaceDetailOfARegisterParamsFile) {
+  const fs::path dir = test::temp_dir();
+  const fs::path file = write_toy(dir);
+  const model::RiggedModel toy = test::make_toy_model();
+  // As register writes it: the parameters under "params", the detail's offsets (here 3 mm on
+  // every vertex) beside them.
+  json p = {{"params", {{"global.translation.x", 10}}},
+            {"surface_detail", {{"offsets_mm", std::vector<double>(static_cast<size_t>(toy.num_vertices()), 3.0)}}}};
+  std::ofstream(dir / "p.json") << p.dump();
+  std::string out;
+  const std::string cmd = "template pose --template " + q(file) + " --params " + q(dir / "p.json") + " --out ";
+  ASSERT_EQ(test::run_cli(cmd + q(dir / "detail.ply"), &out), 0) << out;
+  EXPECT_NE(out.find("surface detail applied"), std::string::npos) << out;
+  ASSERT_EQ(test::run_cli(cmd + q(dir / "alone.ply") + " --no-detail", &out), 0) << out;
+  EXPECT_NE(out.find("NOT applied"), std::string::npos) << out;
+  const TriangleMesh detail = io::read_mesh(dir / "detail.ply"), alone = io::read_mesh(dir / "alone.ply");
+  const Points moved = detail.V - alone.V;
+  EXPECT_NEAR(moved.rowwise().norm().minCoeff(), 3.0, 1e-3);
+  EXPECT_NEAR(moved.rowwise().norm().maxCoeff(), 3.0, 1e-3);
+
+  // Offsets of another template: refused, naming the counts.
+  p["surface_detail"]["offsets_mm"] = {1.0, 2.0};
+  std::ofstream(dir / "p.json") << p.dump();
+  EXPECT_EQ(test::run_cli(cmd + q(dir / "bad.ply"), &out), 3) << out;
+  EXPECT_NE(out.find("has 2 offsets"), std::string::npos) << out;
+  // Parameters without detail: said so.
+  std::ofstream(dir / "p.json") << R"({"params": {"global.translation.x": 10}})";
+  ASSERT_EQ(test::run_cli(cmd + q(dir / "plain.ply"), &out), 0) << out;
+  EXPECT_NE(out.find("no surface detail"), std::string::npos) << out;
+}
+
 TEST(TemplateCommand, PoseRejectsUnknownParameter) {
   const fs::path dir = test::temp_dir();
   const fs::path file = write_toy(dir);

@@ -10,6 +10,8 @@
 
 #include "breastfit/io/io.h"
 #include "breastfit/io/markups.h"
+#include "breastfit/synth/synth_case.h"
+#include "support/default_template.h"
 #include "support/grid_mesh.h"
 #include "support/test_paths.h"
 
@@ -166,6 +168,47 @@ TEST(VolumeCommand, BadInputIsOneLineWithItsExitCode) {
   EXPECT_EQ(test::run_cli("volume " + mesh + " --curves " + curves + " --fill sphere", &out), 2) << out;
   EXPECT_EQ(test::run_cli("volume " + mesh, &out), 2) << out;
   fs::remove_all(dir);
+}
+
+// A synthetic standing scan (no random holes, no misalignment) with its true right breast
+// contour, then the same scan with a hole punched inside that contour (around the nipple).
+TEST(VolumeCommand, AHoleInsideAContourOfASyntheticScanIsRefused) {
+  if (test::cli_path().empty()) GTEST_SKIP() << "CLI not built";
+  const fs::path dir = test::temp_dir();
+  synth::SynthOptions o;
+  o.seed = 6;
+  o.artifacts.n_holes = 0;
+  o.artifacts.n_fragments = 0;
+  o.misalign_rotation_deg = 0;
+  o.misalign_translation_m = 0;
+  const synth::SynthCase c = synth::make_case(*test::default_template(), o);
+  Markups curves;
+  for (const Curve& k : c.truth_curves)
+    if (k.name == "breast_contour_R") curves.curves.push_back(k);
+  ASSERT_EQ(curves.curves.size(), 1u);
+  io::write_markups(dir / "contour.mrk.json", curves);
+  Vec3 nipple = Vec3::Zero();
+  for (const auto& p : c.truth_landmarks)
+    if (p.name == "nipple_R") nipple = p.position;
+
+  io::write_mesh(dir / "scan.ply", c.scan);
+  std::string out;
+  const std::string args = " --curves " + (dir / "contour.mrk.json").string();
+  ASSERT_EQ(test::run_cli("volume " + (dir / "scan.ply").string() + args, &out), 0) << out;
+
+  TriangleMesh holed = c.scan;
+  std::vector<Index> keep;
+  for (Index f = 0; f < holed.num_faces(); ++f)
+    if ((c.scan.V.row(c.scan.F(f, 0)).transpose() - nipple).norm() > 15.0) keep.push_back(f);
+  ASSERT_LT(static_cast<Index>(keep.size()), holed.num_faces());
+  holed.F.resize(static_cast<Index>(keep.size()), 3);
+  for (size_t i = 0; i < keep.size(); ++i) holed.F.row(static_cast<Index>(i)) = c.scan.F.row(keep[i]);
+  io::write_mesh(dir / "holed.ply", holed);
+  EXPECT_EQ(test::run_cli("volume " + (dir / "holed.ply").string() + args, &out), 3) << out;
+  EXPECT_NE(out.find("curve 'breast_contour_R'"), std::string::npos) << out;
+  EXPECT_NE(out.find("1 hole or open border"), std::string::npos) << out;
+  EXPECT_NE(out.find("fitted.ply"), std::string::npos) << out;
+  EXPECT_EQ(std::count(out.begin(), out.end(), '\n'), 1) << out;
 }
 
 }  // namespace

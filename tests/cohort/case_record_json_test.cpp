@@ -41,6 +41,14 @@ TEST(CaseRecordJson, FromReport) {
   const CaseRecord bad = case_record_from_report("p1", "p1.ply", report("not_usable"));
   EXPECT_EQ(bad.status, "not_usable");
   EXPECT_EQ(bad.message, "only 20% of the template on the scan");
+
+  // Implausible: finished (its outputs are written), the problems are the message.
+  nlohmann::json j = report("implausible");
+  j["plausibility"] = {{"plausible", false}, {"problems", {"scale 0.4", "RMSE 8 mm"}}};
+  const CaseRecord odd = case_record_from_report("p1", "p1.ply", j);
+  EXPECT_EQ(odd.status, "implausible");
+  EXPECT_TRUE(odd.finished());
+  EXPECT_EQ(odd.message, "scale 0.4; RMSE 8 mm");
 }
 
 TEST(CaseRecordJson, NoLandmarksGivenIsNoLandmarkError) {

@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "breastfit/core/errors.h"
 #include "support/test_paths.h"
 
 namespace breastfit::io {
@@ -107,6 +108,46 @@ TEST(OutputSet, NeedsTheMarkerAndKnownNames) {
   write(set.path("a.txt"), "A");
   EXPECT_THROW(set.commit(), std::logic_error);  // no report.json: never an unmarked set
   EXPECT_FALSE(fs::exists(dir / "a.txt"));
+}
+
+TEST(OutputSet, LooseFilesAreStagedInsideTheirDirectoryAndMovedTogether) {
+  const fs::path dir = test::temp_dir();
+  write(dir / "a_front.png", "old front");
+  write(dir / "a_side.png", "old side");
+  fs::create_directories(dir / ".a_side.png.breastfit-tmp-99999-0");  // a killed run's, same marker
+  fs::create_directories(dir / ".b.png.breastfit-tmp-99999-0");       // another set's: kept
+  {
+    OutputSet set = loose_file_set({dir / "a_front.png", dir / "a_side.png"});
+    EXPECT_TRUE(fs::equivalent(set.staging_dir().parent_path(), dir));
+    EXPECT_FALSE(fs::exists(dir / ".a_side.png.breastfit-tmp-99999-0"));
+    write(set.path("a_front.png"), "new front");
+    write(set.path("a_side.png"), "new side");
+    EXPECT_EQ(read(dir / "a_front.png"), "old front");
+    set.commit();
+  }
+  EXPECT_EQ(read(dir / "a_front.png"), "new front");
+  EXPECT_EQ(read(dir / "a_side.png"), "new side");
+  EXPECT_TRUE(fs::exists(dir / ".b.png.breastfit-tmp-99999-0"));
+  EXPECT_EQ(staging_dirs_in(dir), 1);
+  EXPECT_THROW(loose_file_set({dir / "a.png", dir / "sub" / "b.png"}), std::invalid_argument);
+  EXPECT_THROW(loose_file_set({}), std::invalid_argument);
+}
+
+TEST(OutputSet, ACommitThatCannotMoveEveryFileMovesNone) {
+  // The middle file's destination is a directory: the failure comes before any move.
+  const fs::path dir = test::temp_dir();
+  write(dir / "a.png", "old a");
+  fs::create_directories(dir / "b.png");
+  write(dir / "c.png", "old c");
+  {
+    OutputSet set = loose_file_set({dir / "a.png", dir / "b.png", dir / "c.png"});
+    for (const char* n : {"a.png", "b.png", "c.png"}) write(set.path(n), "new");
+    EXPECT_THROW(set.commit(), IoError);
+  }
+  EXPECT_EQ(read(dir / "a.png"), "old a");
+  EXPECT_EQ(read(dir / "c.png"), "old c");
+  EXPECT_TRUE(fs::is_directory(dir / "b.png"));
+  EXPECT_EQ(staging_dirs_in(dir), 0);
 }
 
 }  // namespace

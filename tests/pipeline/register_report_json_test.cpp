@@ -22,9 +22,15 @@ TEST(RegisterReportJson, LayoutAndNumbersOfARealRegistration) {
   const RegisterResult& r = test::report_test_result();
   const nlohmann::json j = report_json(r);
   EXPECT_EQ(keys(j), (std::vector<std::string>{"breast_measurements", "converged", "drawings", "iterations",
-                                               "point_cloud", "solver", "status", "stopping_reason", "table1",
-                                               "termination", "time_s", "timings_s", "units", "verdict", "warnings"}));
+                                               "plausibility", "point_cloud", "scan_coverage", "solver", "status",
+                                               "stopping_reason", "table1", "termination", "time_s", "timings_s",
+                                               "units", "verdict", "warnings"}));
   EXPECT_EQ(j["status"], r.usable() ? "ok" : "not_usable");
+  // The surface error counts the covered vertices; the coverage says how many of all.
+  EXPECT_EQ(j["scan_coverage"]["covered_vertices"], r.surface.n);
+  EXPECT_EQ(j["scan_coverage"]["model_vertices"], r.fitted_mm.V.rows());
+  EXPECT_GT(j["scan_coverage"]["fraction"].get<double>(), 0.3);
+  EXPECT_TRUE(j["plausibility"]["plausible"].get<bool>()) << j["plausibility"].dump();
   EXPECT_EQ(j["verdict"], r.fit.summary.verdict.reason);
   EXPECT_EQ(j["converged"], r.fit.summary.converged());
   // Every phase of the pipeline is timed, the fit's own in between.

@@ -2,9 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <numbers>
 
+#include <nlohmann/json.hpp>
+
 #include "breastfit/core/rng.h"
+#include "breastfit/model/gltf_io.h"
 #include "breastfit/model/pose_evaluator.h"
 
 namespace breastfit::test {
@@ -229,6 +233,23 @@ std::vector<std::pair<std::string, Vec3>> ToyScanCase::named_landmarks() const {
   std::vector<std::pair<std::string, Vec3>> named;
   for (const auto& lm : m.landmarks) named.emplace_back(lm.name, lm.point.position(mesh.V, m.rest.F));
   return named;
+}
+
+}  // namespace breastfit::test
+
+namespace breastfit::test {
+
+std::filesystem::path save_two_mesh_toy(const std::filesystem::path& dir) {
+  const std::filesystem::path one = dir / "one.gltf", two = dir / "two.gltf";
+  model::save_gltf(one, make_toy_model());
+  nlohmann::json j = nlohmann::json::parse(std::ifstream(one));
+  auto second = j["nodes"][0];
+  second["name"] = "Second";
+  j["nodes"][0]["name"] = "First";
+  j["nodes"].push_back(second);
+  j["scenes"][0]["nodes"].push_back(j["nodes"].size() - 1);
+  std::ofstream(two) << j.dump();
+  return two;
 }
 
 }  // namespace breastfit::test

@@ -11,6 +11,7 @@
 //  - drawings "sternum" (open, anterior midline) and "breast_contour_R" (closed, around breast_R);
 //  - region "breast_R" (the vertices the breast_R shape moves).
 #include <cstdint>
+#include <filesystem>
 #include <string>
 #include <utility>
 #include <vector>
@@ -42,4 +43,10 @@ struct ToyScanCase {
   std::vector<std::pair<std::string, Vec3>> named_landmarks() const;
 };
 
+}  // namespace breastfit::test
+
+namespace breastfit::test {
+/// The toy model saved as `dir`/two.gltf with two skinned mesh nodes, 'First' and 'Second'
+/// (the same mesh): a template file that needs --mesh NAME. Returns its path.
+std::filesystem::path save_two_mesh_toy(const std::filesystem::path& dir);
 }  // namespace breastfit::test

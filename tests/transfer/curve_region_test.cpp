@@ -250,6 +250,38 @@ TEST(CurveRegion, GaussianBumpVolumeOnACoarseMeshAfterRefinement) {
   EXPECT_LT(vm, 1.5 * exact / 1000);
 }
 
+// The grid without its triangles that touch the disc of radius r around (x, y).
+TriangleMesh with_hole(const TriangleMesh& g, double x, double y, double r) {
+  TriangleMesh out = g;
+  std::vector<Index> keep;
+  for (Index f = 0; f < g.num_faces(); ++f) {
+    bool near = false;
+    for (int k = 0; k < 3; ++k) near = near || (g.V.row(g.F(f, k)).head<2>() - Eigen::RowVector2d(x, y)).norm() < r;
+    if (!near) keep.push_back(f);
+  }
+  out.F.resize(static_cast<Index>(keep.size()), 3);
+  for (size_t i = 0; i < keep.size(); ++i) out.F.row(static_cast<Index>(i)) = g.F.row(keep[i]);
+  return out;
+}
+
+TEST(CurveRegion, AHoleInsideTheCurveIsRefusedOneOutsideIsNot) {
+  const double A = 20, sigma = 15, a = 35;
+  auto f = [&](double x, double y) { return A * std::exp(-(x * x + y * y) / (2 * sigma * sigma)); };
+  const TriangleMesh g = test::grid_mesh(35, 2.0, f);
+  const Points curve = circle(Vec3(0, 0, 0), a, 400, Vec3::UnitX(), Vec3::UnitY(), f);
+  const double closed = volume_inside_curve_ml(g, curve);
+  // A hole on the bump's flank, inside the curve: measured, the volume would be wrong.
+  try {
+    (void)volume_inside_curve_ml(with_hole(g, 12, 5, 7), curve);
+    ADD_FAILURE() << "a hole inside the curve was measured";
+  } catch (const InvalidInput& e) {
+    EXPECT_NE(std::string(e.what()).find("1 hole or open border"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("fitted.ply"), std::string::npos) << e.what();
+  }
+  // A hole well outside the curve changes nothing.
+  EXPECT_NEAR(volume_inside_curve_ml(with_hole(g, 55, 50, 6), curve), closed, 1e-9);
+}
+
 TEST(CurveRegion, RejectsBadInput) {
   const TriangleMesh g = test::grid_mesh(20, 1.0);
   const Points ok = circle(Vec3(0.3, 0.3, 0), 8, 100);

@@ -64,7 +64,8 @@ void bind_register(py::module_& m) {
   py::class_<Fit>(m, "Fit", "The result of register(): the fitted template on the scan, in the scan's frame and units.")
       .def_property_readonly("usable", [](const Fit& f) { return f.result.usable(); },
                              "whether the template came to lie on the scan (False: only report and save() are meaningful)")
-      .def_property_readonly("status", [](const Fit& f) { return f.result.usable() ? "ok" : "not_usable"; })
+      .def_property_readonly("status", [](const Fit& f) { return f.result.status(); },
+                             "report.json's status: \"ok\", \"implausible\" (usable, but see .report[\"plausibility\"]) or \"not_usable\"")
       .def_property_readonly("message", [](const Fit& f) { return f.result.fit.summary.message; },
                              "one line: why the fit is not usable, or how the solver ended")
       .def_property_readonly("units", [](const Fit& f) { return std::string(mesh::units_name(f.result.scan.units)); },

@@ -8,6 +8,7 @@
 #include "breastfit/cohort/cohort_csv.h"
 #include "breastfit/cohort/cohort_html.h"
 #include "breastfit/core/errors.h"
+#include "breastfit/io/output_set.h"
 #include "breastfit/model/template_library.h"
 
 namespace breastfit::cohort {
@@ -47,24 +48,20 @@ std::vector<CaseRecord> run_batch(const std::vector<CohortCase>& cases, const fs
 
 namespace {
 
-void write_replacing(const fs::path& path, const std::string& text) {
-  const fs::path tmp = path.parent_path() / ("." + path.filename().string() + ".tmp");
-  {
-    std::ofstream f(tmp, std::ios::binary);
-    if (!f) throw IoError(tmp.string(), "cannot open for writing");
-    f << text;
-    if (!f) throw IoError(tmp.string(), "write failed");
-  }
-  std::error_code ec;
-  fs::rename(tmp, path, ec);
-  if (ec) throw IoError(path.string(), "cannot move into place: " + ec.message());
+void write_text(const fs::path& path, const std::string& text) {
+  std::ofstream f(path, std::ios::binary);
+  if (!f) throw IoError(path.string(), "cannot open for writing");
+  f << text;
+  if (!f) throw IoError(path.string(), "write failed");
 }
 
 }  // namespace
 
 void write_cohort_summary(const fs::path& out_root, const std::vector<CaseRecord>& records) {
-  write_replacing(out_root / "cohort.csv", format_cohort_csv(records));
-  write_replacing(out_root / "cohort.html", cohort_html(records));
+  io::OutputSet set = io::loose_file_set({out_root / "cohort.html", out_root / "cohort.csv"});
+  write_text(set.path("cohort.html"), cohort_html(records));
+  write_text(set.path("cohort.csv"), format_cohort_csv(records));
+  set.commit();
 }
 
 }  // namespace breastfit::cohort

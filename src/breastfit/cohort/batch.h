@@ -28,8 +28,8 @@ using BatchProgress = std::function<void(int done, int total, const CaseRecord& 
 std::vector<CaseRecord> run_batch(const std::vector<CohortCase>& cases, const std::filesystem::path& out_root,
                                   const BatchOptions& options, const BatchProgress& progress = {});
 
-/// Writes `out_root`/cohort.csv and `out_root`/cohort.html (each written beside and renamed
-/// into place, so a reader never sees half a file).
+/// Writes `out_root`/cohort.csv and `out_root`/cohort.html as one set (io::loose_file_set,
+/// cohort.csv last): a reader never sees half a file, nor a table of another run than the page.
 /// \throws IoError when a file cannot be written
 void write_cohort_summary(const std::filesystem::path& out_root, const std::vector<CaseRecord>& records);
 

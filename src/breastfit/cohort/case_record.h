@@ -30,9 +30,9 @@ struct CaseRecord {
   std::optional<double> inter_nipple_mm;
   int warnings = 0;                        ///< number of warnings in report.json
 
-  /// A finished case is skipped when a cohort is resumed: its report.json exists ("ok" or
-  /// "not_usable"); a failed case is tried again.
-  bool finished() const { return status == "ok" || status == "not_usable"; }
+  /// A finished case is skipped when a cohort is resumed: its report.json exists ("ok",
+  /// "implausible" or "not_usable"); a failed case is tried again.
+  bool finished() const { return status == "ok" || status == "implausible" || status == "not_usable"; }
 };
 
 }  // namespace breastfit::cohort

@@ -76,7 +76,10 @@ CaseRecord case_record_from_report(const std::string& name, const std::string& s
   r.scan = scan;
   r.status = report["status"].get<std::string>();
   if (!r.finished()) throw InvalidInput("report.json: unknown status '" + r.status + "'");
-  if (r.status != "ok") r.message = report.value("verdict", std::string("not usable"));
+  if (r.status == "not_usable") r.message = report.value("verdict", std::string("not usable"));
+  if (r.status == "implausible" && report.contains("plausibility") && report["plausibility"].is_object())
+    for (const auto& p : report["plausibility"].value("problems", json::array()))
+      if (p.is_string()) r.message += std::string(r.message.empty() ? "" : "; ") + p.get<std::string>();
   r.time_s = number_at(report, {"time_s"});
   if (const auto it = number_at(report, {"iterations"})) r.iterations = static_cast<int>(*it);
   r.surface_mae_mm = number_at(report, {"table1", "surface_mm", "mae"});

@@ -116,9 +116,10 @@ std::vector<Outlier> find_outliers(const std::vector<CaseRecord>& records) {
 }
 
 std::string cohort_html(const std::vector<CaseRecord>& records) {
-  int ok = 0, not_usable = 0, failed = 0, resumed = 0;
+  int ok = 0, implausible = 0, not_usable = 0, failed = 0, resumed = 0;
   for (const CaseRecord& r : records) {
     ok += r.status == "ok";
+    implausible += r.status == "implausible";
     not_usable += r.status == "not_usable";
     failed += r.status == "failed";
     resumed += r.resumed;
@@ -127,11 +128,12 @@ std::string cohort_html(const std::vector<CaseRecord>& records) {
       "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>breastfit cohort</title><style>"
       "body{font-family:sans-serif;margin:1.5em;color:#222}table{border-collapse:collapse;font-size:0.9em}"
       "td,th{border:1px solid #ccc;padding:2px 6px;text-align:right}td.l,th.l{text-align:left}"
-      ".failed{background:#fdd}.not_usable{background:#ffe6bf}.plots{display:flex;flex-wrap:wrap;gap:12px}"
+      ".failed{background:#fdd}.not_usable{background:#ffe6bf}.implausible{background:#ffe6bf}.plots{display:flex;flex-wrap:wrap;gap:12px}"
       "svg{border:1px solid #ddd;background:#fafafa}svg text{font-size:11px}svg .t{font-size:12px;font-weight:bold}"
       "svg .bar{fill:#4a7ab5}svg .axis{stroke:#444}svg .c{fill:#444}"
       "</style></head><body>\n<h1>breastfit cohort</h1>\n";
   h += "<p>" + std::to_string(records.size()) + " cases: <b>" + std::to_string(ok) + " ok</b>, " +
+       (implausible > 0 ? std::to_string(implausible) + " implausible, " : std::string()) +
        std::to_string(not_usable) + " not usable, " + std::to_string(failed) + " failed (" + std::to_string(resumed) +
        " taken from a previous run). Each case's outputs are in its sub-directory; the numbers are in "
        "<a href=\"cohort.csv\">cohort.csv</a>.</p>\n";
@@ -157,8 +159,8 @@ std::string cohort_html(const std::vector<CaseRecord>& records) {
     h += "</table>\n";
   }
 
-  h += "<h2>Failed and not usable</h2>\n";
-  if (failed + not_usable == 0) {
+  h += "<h2>Failed, not usable and implausible</h2>\n";
+  if (failed + not_usable + implausible == 0) {
     h += "<p>None.</p>\n";
   } else {
     h += "<table><tr><th class=\"l\">case</th><th class=\"l\">status</th><th class=\"l\">reason</th></tr>\n";
@@ -173,7 +175,8 @@ std::string cohort_html(const std::vector<CaseRecord>& records) {
        "<th>surface mm</th><th>landmarks mm</th><th>vol R ml</th><th>vol L ml</th><th>warnings</th></tr>\n";
   for (const CaseRecord& r : records) {
     const std::string name = html_escape(r.name);
-    const std::string link = r.status == "ok" ? "<a href=\"" + name + "/\">" + name + "</a>" : name;
+    const bool has_outputs = r.status == "ok" || r.status == "implausible";
+    const std::string link = has_outputs ? "<a href=\"" + name + "/\">" + name + "</a>" : name;
     h += "<tr class=\"" + r.status + "\"><td class=\"l\">" + link + "</td><td class=\"l\">" + r.status + "</td><td>" +
          cell(r.time_s, "%.3f") + "</td><td>" + cell(r.surface_mae_mm) + "</td><td>" + cell(r.landmark_mae_mm) +
          "</td><td>" + cell(r.volume_right_ml, "%.0f") + "</td><td>" + cell(r.volume_left_ml, "%.0f") + "</td><td>" +

@@ -16,11 +16,21 @@
 /// DIR outside the set's names are never touched. Staging directories left by killed runs into
 /// the same DIR are removed by the next run (two runs into the same DIR at the same time are not
 /// supported). The guarantee is against an interrupted process, not a power loss (no fsync).
+///
+/// Loose files in a shared directory (`render`'s PNGs under a prefix, `map`'s markups and
+/// confidence, `batch`'s cohort.csv/.html) use Staging::InsideDir: the staging directory is
+/// `DIR/.<marker>.breastfit-tmp-<pid>-<n>`, inside DIR (which may be the working directory, whose
+/// parent need not be writable), and only staging directories of the same marker are leftovers.
+/// Before anything is moved, commit() checks that no written file's destination is a directory,
+/// so that failure leaves DIR as it was too.
 #include <filesystem>
 #include <string>
 #include <vector>
 
 namespace breastfit::io {
+
+/// Where the staging directory goes (see the file comment).
+enum class Staging { NextToDir, InsideDir };
 
 class OutputSet {
  public:
@@ -29,7 +39,8 @@ class OutputSet {
   /// \param names   every file the set may hold, relative to `dir` ("truth/meta.json" allowed)
   /// \param marker  the completion marker, one of `names`; commit() needs it written
   /// \throws IoError when the staging directory cannot be created (or `dir` names no directory)
-  OutputSet(std::filesystem::path dir, std::vector<std::string> names, std::string marker);
+  OutputSet(std::filesystem::path dir, std::vector<std::string> names, std::string marker,
+            Staging staging = Staging::NextToDir);
   /// Removes the staging directory (and anything written into it) unless committed.
   ~OutputSet();
   OutputSet(const OutputSet&) = delete;
@@ -50,10 +61,17 @@ class OutputSet {
   std::filesystem::path dir_, staging_;
   std::vector<std::string> names_;
   std::string marker_;
+  Staging where_;
   bool committed_ = false;
 };
 
 /// The name prefix of the staging directories of `dir` (".DIR.breastfit-tmp-").
 std::string staging_prefix(const std::filesystem::path& dir);
+
+/// A set of loose files in one directory, named by their paths (all in the same directory,
+/// e.g. "out/a_front.png", "out/a_side.png"), the marker last: an OutputSet with
+/// Staging::InsideDir over their directory. \throws std::invalid_argument for paths in different
+/// directories or an empty list; IoError as OutputSet.
+OutputSet loose_file_set(const std::vector<std::filesystem::path>& files);
 
 }  // namespace breastfit::io

@@ -16,7 +16,7 @@ nlohmann::json report_json(const RegisterResult& r) {
   for (size_t i = 0; i < r.landmarks.names.size(); ++i) per_landmark[r.landmarks.names[i]] = r.landmarks.distances_mm[i];
   nlohmann::json j;
   j["time_s"] = r.time_s;
-  j["status"] = r.usable() ? "ok" : "not_usable";
+  j["status"] = r.status();
   j["units"] = std::string(mesh::units_name(r.scan.units));
   j["point_cloud"] = r.scan.was_point_cloud;
   j["iterations"] = s.iterations.size();
@@ -35,6 +35,19 @@ nlohmann::json report_json(const RegisterResult& r) {
     curves[c.name] = {{"closed", c.closed}, {"points", c.points.rows()}, {"length_mm", c.length_mm},
                       {"supported_fraction", c.supported_fraction}, {"mean_model_to_scan_mm", c.mean_model_to_scan_mm}};
   j["drawings"] = curves;
+  const auto& c = r.coverage;
+  j["scan_coverage"] = {{"model_vertices", c.distance_mm.size()},
+                        {"covered_vertices", c.covered_count},
+                        {"fraction", c.fraction()},
+                        {"max_distance_mm", c.options.max_distance_mm},
+                        {"max_normal_angle_deg", c.options.max_normal_angle_deg},
+                        {"border_excluded", c.options.skip_border}};
+  const auto& p = r.plausibility;
+  j["plausibility"] = {{"plausible", p.plausible},
+                       {"problems", p.problems},
+                       {"global_scale", p.global_scale},
+                       {"parameters_at_bound", p.at_bound},
+                       {"bounded_parameters", p.bounded_parameters}};
   j["breast_measurements"] = transfer::to_json(r.breasts);
   j["warnings"] = r.warnings;
   if (r.provenance) {

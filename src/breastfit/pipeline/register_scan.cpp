@@ -113,12 +113,22 @@ RegisterResult register_prepared(const RegisterRequest& req, PreparedTarget& tar
   out.timings.push_back({"transfer", phase.seconds()});
   phase.reset();
   out.breasts = transfer::measure_breasts(model, out.fit.vertices);
-  out.surface = metrics::distance_stats(metrics::surface_distances(out.fit.vertices, scan, !out.scan.was_point_cloud));
+  metrics::CoverageOptions coverage_options;  // the surface error counts what the scan covers
+  coverage_options.skip_border = !out.scan.was_point_cloud;
+  TriangleMesh model_only;
+  model_only.V = out.fit.model_vertices;
+  model_only.F = model.rest.F;
+  out.coverage = metrics::surface_coverage(out.fitted_mm, scan, coverage_options);
+  out.surface = out.coverage.stats();
   out.surface_model_only =
       out.fit.detail_offsets.size() > 0
-          ? metrics::distance_stats(metrics::surface_distances(out.fit.model_vertices, scan, !out.scan.was_point_cloud))
+          ? metrics::surface_coverage(model_only, scan, coverage_options).stats()
           : out.surface;
   out.landmarks = metrics::landmark_errors(model, out.fit.vertices, out.fit.params, out.fit.landmarks);
+  if (out.usable()) {
+    out.plausibility = metrics::judge_plausibility(model, out.fit.params, out.coverage.fraction(), out.surface);
+    for (const auto& p : out.plausibility.problems) out.warnings.push_back("implausible fit: " + p);
+  }
   out.timings.push_back({"measurements", phase.seconds()});
   return out;
 }

@@ -11,6 +11,8 @@
 #include "breastfit/fit/registration.h"
 #include "breastfit/mesh/landmarks.h"
 #include "breastfit/metrics/fit_errors.h"
+#include "breastfit/metrics/plausibility.h"
+#include "breastfit/metrics/surface_coverage.h"
 #include "breastfit/model/rigged_model.h"
 #include "breastfit/pipeline/provenance.h"
 #include "breastfit/pipeline/scan_input.h"
@@ -47,9 +49,13 @@ struct RegisterResult {
   Markups drawings_mm;                  ///< the template's drawings transferred onto the scan (mm)
   std::vector<transfer::TransferredCurve> drawings_on_scan;  ///< the same with support flags and statistics
   transfer::BreastMeasurements breasts; ///< volumes, distances, symmetry
-  metrics::DistanceStats surface;       ///< paper's surface error (fitted vertices → scan)
+  metrics::SurfaceCoverage coverage;    ///< per fitted vertex: distance to the scan, covered by it or not
+  metrics::DistanceStats surface;       ///< paper's surface error (covered fitted vertices → scan)
   metrics::DistanceStats surface_model_only;  ///< the same for the posed template without surface detail
   metrics::LandmarkErrors landmarks;    ///< model landmarks vs input landmarks
+  /// A usable fit's shape judged (scale, parameters at bounds, coverage, surface error); its
+  /// problems are also in `warnings`. Not judged (plausible) when the fit is not usable.
+  metrics::Plausibility plausibility;
   std::vector<std::string> warnings;    ///< everything the user should know
   double time_s = 0;                    ///< scan + landmarks in memory → fitted parameters (index build included)
   /// Wall time per phase: scan_preparation, index_build, the fit's (initialization, stage:<name>,
@@ -58,6 +64,8 @@ struct RegisterResult {
   std::optional<Provenance> provenance;  ///< RegisterRequest::provenance with the effective options
 
   bool usable() const { return fit.summary.usable(); }
+  /// "ok", "implausible" (usable, but see `plausibility`) or "not_usable" (report.json "status").
+  std::string status() const { return !usable() ? "not_usable" : plausibility.plausible ? "ok" : "implausible"; }
 };
 
 /// Runs the registration. `on_iteration` sees every solver iteration and may abort (the result is

@@ -190,6 +190,12 @@ Eigen::VectorXd model_to_scan_distances(const RegisterResult& r) {
   const Points& V = r.fitted_mm.V;
   Eigen::VectorXd d(V.rows());
   if (V.rows() == 0) return d;
+  if (r.coverage.distance_mm.size() == static_cast<size_t>(V.rows())) {  // uncovered: NaN, drawn grey
+    for (Eigen::Index i = 0; i < V.rows(); ++i)
+      d[i] = r.coverage.covered[static_cast<size_t>(i)] ? r.coverage.distance_mm[static_cast<size_t>(i)]
+                                                        : std::numeric_limits<double>::quiet_NaN();
+    return d;
+  }
   const fit::ScanTarget scan(r.scan.mesh_mm, 0);
   const bool skip_border = !r.scan.was_point_cloud;
   for (Eigen::Index i = 0; i < V.rows(); ++i) {

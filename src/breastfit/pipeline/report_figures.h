@@ -61,10 +61,11 @@ struct ReportFigures {
 /// purple, teal or dark grey by index; red is for landmarks).
 render::Rgb report_curve_colour(const std::string& name, size_t index);
 
-/// Distance (mm) from every fitted vertex to the closest point of the scan; NaN where that
-/// closest point lies on the scan's open border (over a hole or beyond the scanned area, where
-/// there is nothing to compare with — the paper's rule; never NaN for a point-cloud scan).
-/// The finite values are the ones behind RegisterResult::surface.
+/// Distance (mm) from every fitted vertex to the closest point of the scan; NaN (drawn grey)
+/// where the scan does not cover the vertex (RegisterResult::coverage, metrics/surface_coverage.h:
+/// over a hole, beyond the scanned area, far from the scan; without a coverage, NaN where the
+/// closest point lies on the scan's open border, never for a point cloud). The finite values
+/// are the ones behind RegisterResult::surface.
 Eigen::VectorXd model_to_scan_distances(const RegisterResult& result);
 
 /// The top of the distance figure's colour scale: the 95th percentile of the finite distances

@@ -88,7 +88,9 @@ void header(std::string& h, const RegisterResult& r, const std::string& template
           ? "point cloud (registered as small oriented discs)"
           : "triangle mesh, " + std::to_string(m.V.rows()) + " vertices, " + std::to_string(m.F.rows()) + " triangles");
   row(h, "Status",
-      r.usable() ? "registered" : "<b>not usable</b>: " + html_escape(r.fit.summary.message));
+      !r.usable()                 ? "<b>not usable</b>: " + html_escape(r.fit.summary.message)
+      : r.plausibility.plausible ? std::string("registered")
+                                 : std::string("<b>implausible</b>: registered, but the fit does not look like this torso (see below)"));
   h += "</table>\n";
 }
 
@@ -98,6 +100,10 @@ void warnings_box(std::string& h, const RegisterResult& r) {
   if (!r.usable()) {
     h += "<div class=\"box failed\"><h2>The registration is not usable</h2><p>" +
          html_escape(r.fit.summary.verdict.reason) + ". Do not use the drawings or measurements of this report.</p></div>\n";
+  } else if (!r.plausibility.plausible) {
+    h += "<div class=\"box failed\"><h2>The fit is implausible</h2><ul>\n";
+    for (const auto& p : r.plausibility.problems) h += "<li>" + html_escape(p) + "</li>\n";
+    h += "</ul><p>Check the scan, its units and the template before using the drawings or measurements.</p></div>\n";
   }
   if (all.empty()) {
     h += "<div class=\"box clean\"><b>No warnings.</b></div>\n";
@@ -169,7 +175,11 @@ void registration_table(std::string& h, const RegisterResult& r, const ReportFig
   row(h, "Surface error",
       "MAE <b>" + num(e.mae, 2) + " mm</b>, SD " + num(e.sd, 2) + " mm, max " + num(e.max, 1) + " mm <span class=\"note\">(" +
           std::to_string(e.n) + " of " + std::to_string(r.fitted_mm.V.rows()) +
-          " fitted vertices compared; the others face holes or lie beyond the scanned area)</span>");
+          " fitted vertices compared: the part the scan covers; the others face holes, lie beyond the scanned "
+          "area or farther than " + num(r.coverage.options.max_distance_mm, 0) + " mm from it)</span>");
+  row(h, "Scan coverage",
+      percent(r.coverage.fraction()) + " of the fitted model <span class=\"note\">(grey in the distance figure: "
+      "not covered, not counted)</span>");
   if (s.detail.applied) {
     const auto& m = r.surface_model_only;
     row(h, "Template alone",

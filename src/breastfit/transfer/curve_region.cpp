@@ -12,6 +12,7 @@
 
 #include "breastfit/core/errors.h"
 #include "breastfit/mesh/adjacency.h"
+#include "breastfit/mesh/boundary.h"
 #include "breastfit/mesh/graph.h"
 #include "breastfit/mesh/subdivision.h"
 #include "breastfit/spatial/knn_index.h"
@@ -500,9 +501,41 @@ std::vector<Index> vertices_inside_curve(const TriangleMesh& mesh, const Points&
   return curve_region(mesh, closed_curve_mm, options).inside;
 }
 
+namespace {
+
+// Refuses a region whose surface has a hole or an open border inside the curve.
+void check_no_hole_inside(const TriangleMesh& mesh, const CurveRegion& region) {
+  const std::vector<bool> inside = [&] {
+    std::vector<bool> in(static_cast<size_t>(mesh.num_vertices()), false);
+    for (Index v : region.inside) in[static_cast<size_t>(v)] = true;
+    for (Index v : region.loop) in[static_cast<size_t>(v)] = false;  // a border along the curve is outside it
+    return in;
+  }();
+  int holes = 0;
+  double longest = 0;
+  Index border_vertices = 0;
+  for (const auto& loop : mesh::boundary_loops(mesh)) {
+    const auto n = std::count_if(loop.begin(), loop.end(), [&](Index v) { return inside[static_cast<size_t>(v)]; });
+    if (n == 0) continue;
+    ++holes;
+    border_vertices += static_cast<Index>(n);
+    longest = std::max(longest, mesh::loop_length(mesh.V, loop));
+  }
+  if (holes == 0) return;
+  char buf[160];
+  std::snprintf(buf, sizeof buf, "%d hole%s or open border%s (%lld border vertices, the longest %.0f mm around)",
+                holes, holes == 1 ? "" : "s", holes == 1 ? "" : "s", static_cast<long long>(border_vertices), longest);
+  throw InvalidInput(std::string("the surface inside the curve has ") + buf +
+                     ": the missing surface would be measured as empty space. Measure on a closed surface, "
+                     "e.g. fitted.ply of `breastfit register` (report.json's volumes), or close the holes first");
+}
+
+}  // namespace
+
 CurveVolume curve_volume(const TriangleMesh& mesh, const Points& closed_curve_mm, const CurveVolumeOptions& options) {
   options.validate();
   const CurveRegion region = curve_region(mesh, closed_curve_mm, options.region);
+  check_no_hole_inside(mesh, region);
   CurveVolume out;
   out.region = region.inside;
   out.mean_curve_distance_mm = region.mean_curve_distance_mm;

@@ -84,8 +84,12 @@ struct CurveVolume {
 };
 
 /// Volume of the solid between the surface inside `closed_curve_mm` and a chest-wall fill
-/// spanning the curve (see the file comment).
-/// \throws InvalidInput as curve_region and region_volume, or for invalid options
+/// spanning the curve (see the file comment). The surface inside the curve must be closed: a
+/// hole or open border there (a scan's hole under the breast contour) is refused, since the
+/// missing skin would count as empty space (on a scan with a hole inside the right contour
+/// +30 % over the truth); holes are not filled, measure on the fit instead (its fitted.ply).
+/// \throws InvalidInput as curve_region and region_volume, for a hole or open border inside the
+///         curve (naming how many and how long), or for invalid options
 CurveVolume curve_volume(const TriangleMesh& mesh, const Points& closed_curve_mm, const CurveVolumeOptions& options = {});
 
 /// curve_volume(...).volume_ml.
