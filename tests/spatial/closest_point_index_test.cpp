@@ -355,6 +355,28 @@ TEST(ClosestPointIndex, TakingOverTheMeshGivesTheSameIndex) {
   }
 }
 
+TEST(ClosestPointIndex, SameIndexWhateverTheThreadsOfTheBuild) {
+  // Large enough for several chunks of every parallel loop of the build (faces, subtrees,
+  // leaves), with an open border and holes.
+  const TriangleMesh m = meshes::noisy_sheet(220, 1.0, 0.4, 0.05, 31);
+  ASSERT_GT(m.num_faces(), 80000);
+  const ClosestPointIndex serial(m);
+  const std::vector<Vec3> qs = queries(m, 3000, 3.0, 1.0, 32);
+  for (const int threads : {2, 3}) {
+    const ClosestPointIndex parallel(m, threads);
+    for (const Vec3& q : qs) {
+      const ClosestPoint a = serial.closest(q), b = parallel.closest(q);
+      ASSERT_EQ(a.face, b.face);
+      ASSERT_EQ(a.sq_dist, b.sq_dist);
+      ASSERT_EQ(a.point, b.point);
+      ASSERT_EQ(a.bary, b.bary);
+      ASSERT_EQ(a.feature, b.feature);
+      ASSERT_EQ(a.on_boundary, b.on_boundary);
+      ASSERT_EQ(serial.smooth_normal(a), parallel.smooth_normal(b));
+    }
+  }
+}
+
 TEST(ClosestPointIndex, ConcurrentQueriesAgree) {
   const TriangleMesh m = meshes::icosphere(4, 100.0);
   const ClosestPointIndex index(m);

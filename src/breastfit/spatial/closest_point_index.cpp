@@ -15,6 +15,7 @@
 #include "breastfit/core/errors.h"
 #include "breastfit/mesh/normals.h"
 #include "breastfit/spatial/detail/bvh.h"
+#include "breastfit/spatial/detail/parallel_for.h"
 #include "breastfit/spatial/detail/point_triangle_kernel.h"
 #include "breastfit/spatial/detail/triangle_tables.h"
 
@@ -110,94 +111,105 @@ struct ClosestPointIndex::Impl {
   /// Builds the tables and the tree (LBVH over the faces' box centres; the same tree as
   /// detail::Bvh::build(detail::triangle_boxes(mesh)) with the Morton method, built without
   /// materialising the boxes: codes come from the mesh, leaf boxes from the leaf blocks).
-  explicit Impl(const TriangleMesh& m) : mesh(m) { build(); }
-  explicit Impl(TriangleMesh&& m) : mesh(std::move(m)) { build(); }
+  Impl(const TriangleMesh& m, int threads) : mesh(m) { build(threads); }
+  Impl(TriangleMesh&& m, int threads) : mesh(std::move(m)) { build(threads); }
 
-  void build() {
+  void build(int threads) {
     detail::validate_triangle_mesh(mesh, "ClosestPointIndex");
-    face_flags = detail::triangle_flags(mesh, &vertex_boundary);
+    face_flags = detail::triangle_flags(mesh, &vertex_boundary, threads);
     vertex_normals = mesh::vertex_normals(mesh);
     std::vector<std::uint32_t> prims;
     {
-      detail::MortonSorted sorted = detail::triangle_morton_order(mesh);
-      detail::build_morton_topology(sorted.codes, kMaxLeafSize, nodes);
+      detail::MortonSorted sorted = detail::triangle_morton_order(mesh, threads);
+      detail::build_morton_topology(sorted.codes, kMaxLeafSize, nodes, threads);
       prims = std::move(sorted.prims);
     }
-    build_leaf_blocks(prims);
+    build_leaf_blocks(prims, threads);
     detail::fit_inner_boxes(nodes);
+  }
+
+  /// Distinct corners of the triangles prims[first, first + count) in first-use order (at most
+  /// 3 · kMaxLeafSize), their number returned; `corner` (optional) receives each triangle
+  /// corner's slot among them.
+  int leaf_corners(const std::vector<std::uint32_t>& prims, std::int32_t first, std::int32_t count,
+                   Index* verts, std::uint8_t (*corner)[3]) const {
+    const Index* F = mesh.F.data();
+    int nv = 0;
+    for (int t = 0; t < count; ++t) {
+      const auto f = static_cast<std::ptrdiff_t>(prims[static_cast<std::size_t>(first + t)]);
+      for (int k = 0; k < 3; ++k) {
+        const Index v = F[3 * f + k];
+        int slot = 0;
+        while (slot < nv && verts[slot] != v) ++slot;
+        if (slot == nv) verts[nv++] = v;
+        if (corner) corner[t][k] = static_cast<std::uint8_t>(slot);
+      }
+    }
+    return nv;
   }
 
   /// Replaces each leaf's slot range by its block (see LeafHeader) and sets its box: the
   /// bounds of the leaf's vertices rounded outward to float (= the union of its triangles'
-  /// boxes).
-  void build_leaf_blocks(const std::vector<std::uint32_t>& prims) {
-    // Upper bound: every leaf full with 3 distinct corners per triangle. The buffer is not
-    // initialised, so this only claims address space; lines are written (and paged in) once,
-    // in order.
-    std::size_t max_lines = 0;
-    for (const detail::BvhNode& n : nodes) {
-      if (n.is_leaf()) max_lines += (kHeaderBytes + 3 * n.count * 24 + 63) / 64;
-    }
-    blocks.resize(max_lines);  // uninitialised: pages are touched only where written
-    std::size_t used = 0;
-    const double* V = mesh.V.data();
-    const Index* F = mesh.F.data();
-    // Distinct corners of a leaf, in first-use order: seen[v] = (leaf number << 4) | slot of
-    // v in the current leaf's block (leaf numbers start at 1, so 0 is "not seen").
-    static_assert(3 * kMaxLeafSize <= 16, "corner slots must fit in 4 bits");
-    std::vector<std::uint32_t> seen(static_cast<std::size_t>(mesh.num_vertices()), 0);
-    std::uint32_t leaf_number = 0;
-    for (std::size_t i = 0; i < nodes.size(); ++i) {
-      detail::BvhNode& n = nodes[i];
-      if (i == 1 || !n.is_leaf()) continue;  // padding, inner node
-      if (++leaf_number >= (1u << 28)) {  // stamps would overflow: start over
-        std::fill(seen.begin(), seen.end(), 0u);
-        leaf_number = 1;
-      }
-      LeafHeader h{};
-      h.count = static_cast<std::uint8_t>(n.count);
+  /// boxes). Two passes over the leaves, each on `threads` threads: the blocks' sizes, then
+  /// (at offsets from their prefix sums) the blocks; the same bytes for any thread count.
+  void build_leaf_blocks(const std::vector<std::uint32_t>& prims, int threads) {
+    static_assert(3 * kMaxLeafSize <= 255, "corner slots must fit in a byte");
+    std::vector<std::int32_t> leaves;
+    leaves.reserve(nodes.size() / 2 + 1);
+    for (std::size_t i = 0; i < nodes.size(); ++i)
+      if (i != 1 && nodes[i].is_leaf()) leaves.push_back(static_cast<std::int32_t>(i));
+    constexpr std::size_t kLeafChunk = 2048;
+    // Pass 1: the 64-byte lines of each leaf's block, then where each block starts.
+    std::vector<std::size_t> start(leaves.size() + 1, 0);
+    detail::parallel_for_chunks(leaves.size(), kLeafChunk, threads, [&](std::size_t, std::size_t b, std::size_t e) {
       Index verts[3 * kMaxLeafSize];
-      int nv = 0;
-      for (int t = 0; t < n.count; ++t) {
-        const auto f = static_cast<std::int32_t>(prims[n.first + t]);
-        h.face[t] = f;
-        h.flags[t] = face_flags[f];
-        for (int k = 0; k < 3; ++k) {
-          const Index v = F[3 * static_cast<std::ptrdiff_t>(f) + k];
-          std::uint32_t& s = seen[static_cast<std::size_t>(v)];
-          if ((s >> 4) != leaf_number) {
-            s = (leaf_number << 4) | static_cast<std::uint32_t>(nv);
-            verts[nv++] = v;
+      for (std::size_t l = b; l < e; ++l) {
+        const detail::BvhNode& n = nodes[static_cast<std::size_t>(leaves[l])];
+        const int nv = leaf_corners(prims, n.first, n.count, verts, nullptr);
+        start[l + 1] = (kHeaderBytes + 24 * static_cast<std::size_t>(nv) + 63) / 64;
+      }
+    });
+    for (std::size_t l = 0; l < leaves.size(); ++l) start[l + 1] += start[l];
+    blocks.resize(start.back());  // uninitialised: every line is written below
+    const double* V = mesh.V.data();
+    // Pass 2: the blocks and the leaves' boxes.
+    detail::parallel_for_chunks(leaves.size(), kLeafChunk, threads, [&](std::size_t, std::size_t b, std::size_t e) {
+      for (std::size_t l = b; l < e; ++l) {
+        detail::BvhNode& n = nodes[static_cast<std::size_t>(leaves[l])];
+        LeafHeader h{};
+        h.count = static_cast<std::uint8_t>(n.count);
+        Index verts[3 * kMaxLeafSize];
+        const int nv = leaf_corners(prims, n.first, n.count, verts, h.corner);
+        for (int t = 0; t < n.count; ++t) {
+          const auto f = static_cast<std::int32_t>(prims[static_cast<std::size_t>(n.first + t)]);
+          h.face[t] = f;
+          h.flags[t] = face_flags[static_cast<std::size_t>(f)];
+        }
+        h.num_vertices = static_cast<std::uint8_t>(nv);
+        const std::size_t line = start[l];
+        const std::size_t lines = start[l + 1] - line;
+        unsigned char* base = blocks[line].bytes;
+        std::memset(blocks[line + lines - 1].bytes, 0, 64);  // deterministic padding
+        std::memset(base, 0, kHeaderBytes);
+        std::memcpy(base, &h, sizeof(LeafHeader));
+        auto* coords = reinterpret_cast<double*>(base + kHeaderBytes);
+        double lo[3] = {kInf, kInf, kInf}, hi[3] = {-kInf, -kInf, -kInf};
+        for (int j = 0; j < nv; ++j) {
+          const double* p = V + 3 * static_cast<std::ptrdiff_t>(verts[j]);
+          for (int k = 0; k < 3; ++k) {
+            coords[3 * j + k] = p[k];
+            lo[k] = std::min(lo[k], p[k]);
+            hi[k] = std::max(hi[k], p[k]);
           }
-          h.corner[t][k] = static_cast<std::uint8_t>(s & 15u);
         }
-      }
-      h.num_vertices = static_cast<std::uint8_t>(nv);
-      const std::size_t line = used;
-      const std::size_t lines = (kHeaderBytes + 24 * nv + 63) / 64;
-      used += lines;
-      unsigned char* base = blocks[line].bytes;
-      std::memset(blocks[line + lines - 1].bytes, 0, 64);  // deterministic padding
-      std::memset(base, 0, kHeaderBytes);
-      std::memcpy(base, &h, sizeof(LeafHeader));
-      auto* coords = reinterpret_cast<double*>(base + kHeaderBytes);
-      double lo[3] = {kInf, kInf, kInf}, hi[3] = {-kInf, -kInf, -kInf};
-      for (int j = 0; j < nv; ++j) {
-        const double* p = V + 3 * static_cast<std::ptrdiff_t>(verts[j]);
         for (int k = 0; k < 3; ++k) {
-          coords[3 * j + k] = p[k];
-          lo[k] = std::min(lo[k], p[k]);
-          hi[k] = std::max(hi[k], p[k]);
+          n.lo[k] = detail::round_down_to_float(lo[k]);
+          n.hi[k] = detail::round_up_to_float(hi[k]);
         }
+        n.first = static_cast<std::int32_t>(line);
+        n.count = static_cast<std::int32_t>(lines);
       }
-      for (int k = 0; k < 3; ++k) {
-        n.lo[k] = detail::round_down_to_float(lo[k]);
-        n.hi[k] = detail::round_up_to_float(hi[k]);
-      }
-      n.first = static_cast<std::int32_t>(line);
-      n.count = static_cast<std::int32_t>(lines);
-    }
-    blocks.resize(used);  // shrinks in place
+    });
   }
 
   const double* vertex(Index face, int corner) const {
@@ -236,6 +248,16 @@ struct ClosestPointIndex::Impl {
     };
     float thr = threshold(best.sq_dist);
     if (box_sq_dist(nodes[0], qf) > thr) return;
+    // A leaf's triangle is skipped when its own box (double) is farther than the best so far:
+    // its distance cannot be smaller, nor equal. The slack covers the kernel's rounding (a few
+    // ulps of the coordinates), so no triangle the kernel would accept is skipped.
+    const double dslack = 1e-12 * qmax;
+    auto triangle_limit = [&](double sq) {
+      if (!(sq < kInf)) return kInf;
+      const double r = std::sqrt(sq) + dslack;
+      return r * r;
+    };
+    double tri_limit = triangle_limit(best.sq_dist);
 
     struct Entry {
       std::int32_t node;
@@ -279,12 +301,21 @@ struct ClosestPointIndex::Impl {
         const auto* h = reinterpret_cast<const LeafHeader*>(base);
         const auto* coords = reinterpret_cast<const double*>(base + kHeaderBytes);
         for (int i = 0; i < h->count; ++i) {
+          const double* a = coords + 3 * h->corner[i][0];
+          const double* b = coords + 3 * h->corner[i][1];
+          const double* c = coords + 3 * h->corner[i][2];
+          double box = 0.0;
+          for (int k = 0; k < 3; ++k) {
+            const double lo = std::min(std::min(a[k], b[k]), c[k]);
+            const double hi = std::max(std::max(a[k], b[k]), c[k]);
+            const double d = std::max(std::max(lo - q[k], q[k] - hi), 0.0);
+            box += d * d;
+          }
+          if (box > tri_limit) continue;
           double bary[3];
           ClosestFeature feature;
           const double s = detail::closest_point_on_triangle_kernel(
-              q, coords + 3 * h->corner[i][0], coords + 3 * h->corner[i][1],
-              coords + 3 * h->corner[i][2], (h->flags[i] & detail::kFlagDegenerate) != 0, bary,
-              feature);
+              q, a, b, c, (h->flags[i] & detail::kFlagDegenerate) != 0, bary, feature);
           if (best.offer(s, h->face[i])) {
             best.sq_dist = s;
             best.face = h->face[i];
@@ -292,6 +323,7 @@ struct ClosestPointIndex::Impl {
             std::copy(bary, bary + 3, best.bary);
             best.feature = feature;
             thr = threshold(s);
+            tri_limit = triangle_limit(s);
           }
         }
       }
@@ -330,10 +362,10 @@ struct ClosestPointIndex::Impl {
   }
 };
 
-ClosestPointIndex::ClosestPointIndex(const TriangleMesh& mesh)
-    : impl_(std::make_unique<Impl>(mesh)) {}
-ClosestPointIndex::ClosestPointIndex(TriangleMesh&& mesh)
-    : impl_(std::make_unique<Impl>(std::move(mesh))) {}
+ClosestPointIndex::ClosestPointIndex(const TriangleMesh& mesh, int threads)
+    : impl_(std::make_unique<Impl>(mesh, threads)) {}
+ClosestPointIndex::ClosestPointIndex(TriangleMesh&& mesh, int threads)
+    : impl_(std::make_unique<Impl>(std::move(mesh), threads)) {}
 ClosestPointIndex::~ClosestPointIndex() = default;
 ClosestPointIndex::ClosestPointIndex(ClosestPointIndex&&) noexcept = default;
 ClosestPointIndex& ClosestPointIndex::operator=(ClosestPointIndex&&) noexcept = default;
