@@ -128,88 +128,145 @@ struct ClosestPointIndex::Impl {
     detail::fit_inner_boxes(nodes);
   }
 
-  /// Distinct corners of the triangles prims[first, first + count) in first-use order (at most
-  /// 3 · kMaxLeafSize), their number returned; `corner` (optional) receives each triangle
-  /// corner's slot among them.
-  int leaf_corners(const std::vector<std::uint32_t>& prims, std::int32_t first, std::int32_t count,
-                   Index* verts, std::uint8_t (*corner)[3]) const {
-    const Index* F = mesh.F.data();
-    int nv = 0;
-    for (int t = 0; t < count; ++t) {
-      const auto f = static_cast<std::ptrdiff_t>(prims[static_cast<std::size_t>(first + t)]);
+  /// Writes leaf node `n`'s block at lines [line, line + lines) of `blocks` (header `h`, then the
+  /// corners `verts[0, nv)`), sets its box (the bounds of those vertices rounded outward to float
+  /// = the union of its triangles' boxes) and points the node at the block.
+  void write_leaf_block(detail::BvhNode& n, const LeafHeader& h, const Index* verts, int nv,
+                        std::size_t line, std::size_t lines) {
+    const double* V = mesh.V.data();
+    unsigned char* base = blocks[line].bytes;
+    std::memset(blocks[line + lines - 1].bytes, 0, 64);  // deterministic padding
+    std::memset(base, 0, kHeaderBytes);
+    std::memcpy(base, &h, sizeof(LeafHeader));
+    auto* coords = reinterpret_cast<double*>(base + kHeaderBytes);
+    double lo[3] = {kInf, kInf, kInf}, hi[3] = {-kInf, -kInf, -kInf};
+    for (int j = 0; j < nv; ++j) {
+      const double* p = V + 3 * static_cast<std::ptrdiff_t>(verts[j]);
       for (int k = 0; k < 3; ++k) {
-        const Index v = F[3 * f + k];
-        int slot = 0;
-        while (slot < nv && verts[slot] != v) ++slot;
-        if (slot == nv) verts[nv++] = v;
-        if (corner) corner[t][k] = static_cast<std::uint8_t>(slot);
+        coords[3 * j + k] = p[k];
+        lo[k] = std::min(lo[k], p[k]);
+        hi[k] = std::max(hi[k], p[k]);
       }
     }
-    return nv;
+    for (int k = 0; k < 3; ++k) {
+      n.lo[k] = detail::round_down_to_float(lo[k]);
+      n.hi[k] = detail::round_up_to_float(hi[k]);
+    }
+    n.first = static_cast<std::int32_t>(line);
+    n.count = static_cast<std::int32_t>(lines);
   }
 
-  /// Replaces each leaf's slot range by its block (see LeafHeader) and sets its box: the
-  /// bounds of the leaf's vertices rounded outward to float (= the union of its triangles'
-  /// boxes). Two passes over the leaves, each on `threads` threads: the blocks' sizes, then
-  /// (at offsets from their prefix sums) the blocks; the same bytes for any thread count.
+  /// The header of leaf `n` (slots of `prims`) but its corners.
+  LeafHeader leaf_header(const detail::BvhNode& n, const std::vector<std::uint32_t>& prims) const {
+    LeafHeader h{};
+    h.count = static_cast<std::uint8_t>(n.count);
+    for (int t = 0; t < n.count; ++t) {
+      const auto f = static_cast<std::int32_t>(prims[static_cast<std::size_t>(n.first + t)]);
+      h.face[t] = f;
+      h.flags[t] = face_flags[static_cast<std::size_t>(f)];
+    }
+    return h;
+  }
+
+  static std::size_t block_lines(int num_vertices) {
+    return (kHeaderBytes + 24 * static_cast<std::size_t>(num_vertices) + 63) / 64;
+  }
+
+  /// Replaces each leaf's slot range by its block (see LeafHeader) and sets its box. A leaf's
+  /// distinct corners are in first-use order. One thread: one pass in node order, corners
+  /// deduplicated with a per-vertex stamp. More: two passes over chunks of leaves, the blocks'
+  /// sizes and then (at offsets from their prefix sums) the blocks, corners deduplicated within
+  /// the leaf. Both give the same bytes.
   void build_leaf_blocks(const std::vector<std::uint32_t>& prims, int threads) {
-    static_assert(3 * kMaxLeafSize <= 255, "corner slots must fit in a byte");
+    if (threads <= 1) {
+      build_leaf_blocks_serial(prims);
+      return;
+    }
     std::vector<std::int32_t> leaves;
     leaves.reserve(nodes.size() / 2 + 1);
     for (std::size_t i = 0; i < nodes.size(); ++i)
       if (i != 1 && nodes[i].is_leaf()) leaves.push_back(static_cast<std::int32_t>(i));
     constexpr std::size_t kLeafChunk = 2048;
-    // Pass 1: the 64-byte lines of each leaf's block, then where each block starts.
+    // Distinct corners of a leaf's triangles in first-use order, their number returned.
+    const Index* F = mesh.F.data();
+    auto corners = [&](const detail::BvhNode& n, Index* verts, LeafHeader* h) {
+      int nv = 0;
+      for (int t = 0; t < n.count; ++t) {
+        const auto f = static_cast<std::ptrdiff_t>(prims[static_cast<std::size_t>(n.first + t)]);
+        for (int k = 0; k < 3; ++k) {
+          const Index v = F[3 * f + k];
+          int slot = 0;
+          while (slot < nv && verts[slot] != v) ++slot;
+          if (slot == nv) verts[nv++] = v;
+          if (h) h->corner[t][k] = static_cast<std::uint8_t>(slot);
+        }
+      }
+      return nv;
+    };
     std::vector<std::size_t> start(leaves.size() + 1, 0);
     detail::parallel_for_chunks(leaves.size(), kLeafChunk, threads, [&](std::size_t, std::size_t b, std::size_t e) {
       Index verts[3 * kMaxLeafSize];
-      for (std::size_t l = b; l < e; ++l) {
-        const detail::BvhNode& n = nodes[static_cast<std::size_t>(leaves[l])];
-        const int nv = leaf_corners(prims, n.first, n.count, verts, nullptr);
-        start[l + 1] = (kHeaderBytes + 24 * static_cast<std::size_t>(nv) + 63) / 64;
-      }
+      for (std::size_t l = b; l < e; ++l)
+        start[l + 1] = block_lines(corners(nodes[static_cast<std::size_t>(leaves[l])], verts, nullptr));
     });
     for (std::size_t l = 0; l < leaves.size(); ++l) start[l + 1] += start[l];
     blocks.resize(start.back());  // uninitialised: every line is written below
-    const double* V = mesh.V.data();
-    // Pass 2: the blocks and the leaves' boxes.
     detail::parallel_for_chunks(leaves.size(), kLeafChunk, threads, [&](std::size_t, std::size_t b, std::size_t e) {
+      Index verts[3 * kMaxLeafSize];
       for (std::size_t l = b; l < e; ++l) {
         detail::BvhNode& n = nodes[static_cast<std::size_t>(leaves[l])];
-        LeafHeader h{};
-        h.count = static_cast<std::uint8_t>(n.count);
-        Index verts[3 * kMaxLeafSize];
-        const int nv = leaf_corners(prims, n.first, n.count, verts, h.corner);
-        for (int t = 0; t < n.count; ++t) {
-          const auto f = static_cast<std::int32_t>(prims[static_cast<std::size_t>(n.first + t)]);
-          h.face[t] = f;
-          h.flags[t] = face_flags[static_cast<std::size_t>(f)];
-        }
+        LeafHeader h = leaf_header(n, prims);
+        const int nv = corners(n, verts, &h);
         h.num_vertices = static_cast<std::uint8_t>(nv);
-        const std::size_t line = start[l];
-        const std::size_t lines = start[l + 1] - line;
-        unsigned char* base = blocks[line].bytes;
-        std::memset(blocks[line + lines - 1].bytes, 0, 64);  // deterministic padding
-        std::memset(base, 0, kHeaderBytes);
-        std::memcpy(base, &h, sizeof(LeafHeader));
-        auto* coords = reinterpret_cast<double*>(base + kHeaderBytes);
-        double lo[3] = {kInf, kInf, kInf}, hi[3] = {-kInf, -kInf, -kInf};
-        for (int j = 0; j < nv; ++j) {
-          const double* p = V + 3 * static_cast<std::ptrdiff_t>(verts[j]);
-          for (int k = 0; k < 3; ++k) {
-            coords[3 * j + k] = p[k];
-            lo[k] = std::min(lo[k], p[k]);
-            hi[k] = std::max(hi[k], p[k]);
-          }
-        }
-        for (int k = 0; k < 3; ++k) {
-          n.lo[k] = detail::round_down_to_float(lo[k]);
-          n.hi[k] = detail::round_up_to_float(hi[k]);
-        }
-        n.first = static_cast<std::int32_t>(line);
-        n.count = static_cast<std::int32_t>(lines);
+        write_leaf_block(n, h, verts, nv, start[l], start[l + 1] - start[l]);
       }
     });
+  }
+
+  void build_leaf_blocks_serial(const std::vector<std::uint32_t>& prims) {
+    // Upper bound: every leaf full with 3 distinct corners per triangle. The buffer is not
+    // initialised, so this only claims address space; lines are written (and paged in) once,
+    // in order.
+    std::size_t max_lines = 0;
+    for (const detail::BvhNode& n : nodes) {
+      if (n.is_leaf()) max_lines += block_lines(3 * n.count);
+    }
+    blocks.resize(max_lines);
+    std::size_t used = 0;
+    const Index* F = mesh.F.data();
+    // Distinct corners of a leaf, in first-use order: seen[v] = (leaf number << 4) | slot of
+    // v in the current leaf's block (leaf numbers start at 1, so 0 is "not seen").
+    static_assert(3 * kMaxLeafSize <= 16, "corner slots must fit in 4 bits");
+    std::vector<std::uint32_t> seen(static_cast<std::size_t>(mesh.num_vertices()), 0);
+    std::uint32_t leaf_number = 0;
+    for (std::size_t i = 0; i < nodes.size(); ++i) {
+      detail::BvhNode& n = nodes[i];
+      if (i == 1 || !n.is_leaf()) continue;  // padding, inner node
+      if (++leaf_number >= (1u << 28)) {  // stamps would overflow: start over
+        std::fill(seen.begin(), seen.end(), 0u);
+        leaf_number = 1;
+      }
+      LeafHeader h = leaf_header(n, prims);
+      Index verts[3 * kMaxLeafSize];
+      int nv = 0;
+      for (int t = 0; t < n.count; ++t) {
+        const Index f = h.face[t];
+        for (int k = 0; k < 3; ++k) {
+          const Index v = F[3 * static_cast<std::ptrdiff_t>(f) + k];
+          std::uint32_t& s = seen[static_cast<std::size_t>(v)];
+          if ((s >> 4) != leaf_number) {
+            s = (leaf_number << 4) | static_cast<std::uint32_t>(nv);
+            verts[nv++] = v;
+          }
+          h.corner[t][k] = static_cast<std::uint8_t>(s & 15u);
+        }
+      }
+      h.num_vertices = static_cast<std::uint8_t>(nv);
+      const std::size_t lines = block_lines(nv);
+      write_leaf_block(n, h, verts, nv, used, lines);
+      used += lines;
+    }
+    blocks.resize(used);  // shrinks in place
   }
 
   const double* vertex(Index face, int corner) const {
@@ -248,16 +305,6 @@ struct ClosestPointIndex::Impl {
     };
     float thr = threshold(best.sq_dist);
     if (box_sq_dist(nodes[0], qf) > thr) return;
-    // A leaf's triangle is skipped when its own box (double) is farther than the best so far:
-    // its distance cannot be smaller, nor equal. The slack covers the kernel's rounding (a few
-    // ulps of the coordinates), so no triangle the kernel would accept is skipped.
-    const double dslack = 1e-12 * qmax;
-    auto triangle_limit = [&](double sq) {
-      if (!(sq < kInf)) return kInf;
-      const double r = std::sqrt(sq) + dslack;
-      return r * r;
-    };
-    double tri_limit = triangle_limit(best.sq_dist);
 
     struct Entry {
       std::int32_t node;
@@ -301,21 +348,12 @@ struct ClosestPointIndex::Impl {
         const auto* h = reinterpret_cast<const LeafHeader*>(base);
         const auto* coords = reinterpret_cast<const double*>(base + kHeaderBytes);
         for (int i = 0; i < h->count; ++i) {
-          const double* a = coords + 3 * h->corner[i][0];
-          const double* b = coords + 3 * h->corner[i][1];
-          const double* c = coords + 3 * h->corner[i][2];
-          double box = 0.0;
-          for (int k = 0; k < 3; ++k) {
-            const double lo = std::min(std::min(a[k], b[k]), c[k]);
-            const double hi = std::max(std::max(a[k], b[k]), c[k]);
-            const double d = std::max(std::max(lo - q[k], q[k] - hi), 0.0);
-            box += d * d;
-          }
-          if (box > tri_limit) continue;
           double bary[3];
           ClosestFeature feature;
           const double s = detail::closest_point_on_triangle_kernel(
-              q, a, b, c, (h->flags[i] & detail::kFlagDegenerate) != 0, bary, feature);
+              q, coords + 3 * h->corner[i][0], coords + 3 * h->corner[i][1],
+              coords + 3 * h->corner[i][2], (h->flags[i] & detail::kFlagDegenerate) != 0, bary,
+              feature);
           if (best.offer(s, h->face[i])) {
             best.sq_dist = s;
             best.face = h->face[i];
@@ -323,7 +361,6 @@ struct ClosestPointIndex::Impl {
             std::copy(bary, bary + 3, best.bary);
             best.feature = feature;
             thr = threshold(s);
-            tri_limit = triangle_limit(s);
           }
         }
       }
