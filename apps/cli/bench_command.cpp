@@ -2,11 +2,15 @@
 // time (time_s: scan and landmarks in memory → fitted parameters) and the whole register run
 // (total_s: reading the scan and landmarks, the registration with transfer and measurements, and
 // writing the outputs without report.html, as `register --no-report-html` does) and the default
-// `register` run end to end (full_s: total_s plus rendering and writing report.html).
+// `register` run end to end (full_s: total_s plus rendering and writing report.html), with CPU
+// times (cpu_s: the register_scan call; tot_cpu_s: the whole run without report.html), as the
+// machine may be busy.
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <iostream>
+#include <time.h>
 #include <unistd.h>
 
 #include <nlohmann/json.hpp>
@@ -34,13 +38,23 @@ double median(std::vector<double> v) {
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
+// CPU seconds of the whole process so far (every thread; OpenMP's waiting threads spin, so with
+// 2 threads on a busy machine this exceeds the work done).
+double process_cpu_s() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
 // The workstation's Re-fit: the scan opened once (serve::ScanSession), a full fit, then `repeat`
-// warm-started re-fits, each after moving one landmark (in turn) by 3 mm along the scan's x, y or z.
+// warm-started re-fits, each after moving one landmark (in turn) by `move_mm` along the scan's x,
+// y or z.
 // Returns the server time of each re-fit, ms (fit, transfer, measurements, distances): wall and
 // the thread's CPU time (the work is single-threaded: CPU time is the wall time without the
 // machine's other load).
 std::vector<double> time_refits(const std::filesystem::path& dir, const std::shared_ptr<const model::RiggedModel>& model,
-                                const fit::FitOptions& options, int repeat, bool& usable, std::vector<double>& cpu_ms) {
+                                const fit::FitOptions& options, int repeat, double move_mm, bool& usable,
+                                std::vector<double>& cpu_ms) {
   serve::ScanSession session("bench", dir / "scan.ply", (dir / "scan.ply").string(), model, options);
   LandmarkSet lms = io::landmarks_to_mm(io::read_landmarks(dir / "landmarks.mrk.json"), session.scan().units);
   lms.declared_units = "mm";
@@ -48,7 +62,7 @@ std::vector<double> time_refits(const std::filesystem::path& dir, const std::sha
   std::vector<double> ms;
   for (int k = 0; k < repeat && usable; ++k) {
     LandmarkSet moved = lms;
-    moved.points[k % moved.points.size()].position[k % 3] += 3.0;
+    moved.points[k % moved.points.size()].position[k % 3] += move_mm;
     const auto outcome = session.run_fit(moved, true);
     if (!outcome->warm) throw InvalidInput(dir.string() + ": the re-fit was not warm-started");
     usable = usable && outcome->result.usable();
@@ -84,6 +98,7 @@ void register_bench(CLI::App& app, int& exit_code) {
   struct Args {
     std::string dir, template_path, template_mesh, config, json_out;
     int repeat = 5;
+    double refit_mm = 10.0;
     bool no_landmarks = false, refit = false, suggest = false;
     FitFlags fit;
   };
@@ -98,7 +113,9 @@ void register_bench(CLI::App& app, int& exit_code) {
       ->check(CLI::Range(1, 100));
   sub->add_flag("--no-landmarks", args->no_landmarks, "landmark-free registration");
   sub->add_flag("--refit", args->refit,
-                "time the workstation's warm-started re-fit after moving one landmark by 3 mm (server time, ms)");
+                "time the workstation's warm-started re-fit after moving one landmark (server time, ms)");
+  sub->add_option("--refit-mm", args->refit_mm, "how far --refit moves the landmark, mm (default 10)")
+      ->check(CLI::Range(0.0, 200.0));
   sub->add_flag("--suggest", args->suggest,
                 "time the workstation's Suggest: the 12 landmarks found on the open scan (server time, ms)");
   sub->add_option("--template,-t", args->template_path, "rigged template (.glb/.gltf)");
@@ -121,8 +138,9 @@ void register_bench(CLI::App& app, int& exit_code) {
       for (const auto& dir : experiments::find_case_dirs(args->dir)) {
         bool usable = false;
         std::vector<double> cpu;
-        const std::vector<double> ms = args->suggest ? time_suggests(dir, model, options, args->repeat, usable, cpu)
-                                                     : time_refits(dir, model, options, args->repeat, usable, cpu);
+        const std::vector<double> ms =
+            args->suggest ? time_suggests(dir, model, options, args->repeat, usable, cpu)
+                          : time_refits(dir, model, options, args->repeat, args->refit_mm, usable, cpu);
         all.insert(all.end(), ms.begin(), ms.end());
         all_cpu.insert(all_cpu.end(), cpu.begin(), cpu.end());
         medians.push_back(median(ms));
@@ -132,17 +150,18 @@ void register_bench(CLI::App& app, int& exit_code) {
         cases.push_back({{"case", dir.filename().string()}, {job + "_ms_median", median(ms)}, {job + "_ms_all", ms},
                          {job + "_cpu_ms_median", median(cpu)}, {job + "_cpu_ms_all", cpu}, {"usable", usable}});
       }
+      char what[64] = "suggest";
+      if (!args->suggest) std::snprintf(what, sizeof what, "re-fit after a %.1f mm move", args->refit_mm);
       std::printf("%s, median of all %zu: %.1f ms wall, %.1f ms CPU (median of the case medians: %.1f ms wall, "
                   "%.1f ms CPU)\n",
-                  args->suggest ? "suggest" : "re-fit", all.size(), median(all), median(all_cpu), median(medians),
-                  median(cpu_medians));
+                  what, all.size(), median(all), median(all_cpu), median(medians), median(cpu_medians));
       if (!args->json_out.empty()) {
         std::ofstream f(args->json_out);
         if (!f) throw IoError(args->json_out, "cannot open for writing");
-        f << nlohmann::json{{"cases", cases}, {"median_" + job + "_ms", median(all)}, {"median_" + job + "_cpu_ms", median(all_cpu)},
-                            {"repeat", args->repeat}}
-                 .dump(1)
-          << "\n";
+        nlohmann::json j{{"cases", cases}, {"median_" + job + "_ms", median(all)}, {"median_" + job + "_cpu_ms", median(all_cpu)},
+                         {"repeat", args->repeat}};
+        if (args->refit) j["move_mm"] = args->refit_mm;
+        f << j.dump(1) << "\n";
       }
       return;
     }
@@ -151,13 +170,15 @@ void register_bench(CLI::App& app, int& exit_code) {
         std::filesystem::temp_directory_path() / ("breastfit-bench-" + std::to_string(::getpid()));
     pipeline::RegisterOutputOptions output_options;
     output_options.report_html = false;
-    std::printf("%-24s %9s %9s %9s %6s %10s %10s %8s\n", "case", "time_s", "total_s", "full_s", "iters", "surf_mae",
-                "lm_mae", "status");
+    std::printf("%-24s %9s %9s %9s %9s %9s %6s %10s %10s %8s\n", "case", "time_s", "total_s", "full_s", "cpu_s",
+                "tot_cpu_s", "iters", "surf_mae", "lm_mae", "status");
+    std::vector<double> cpu_medians, total_cpu_medians;
     for (const auto& dir : experiments::find_case_dirs(args->dir)) {
-      std::vector<double> times, totals, fulls;
+      std::vector<double> times, totals, fulls, cpus, total_cpus;
       pipeline::RegisterResult last;
       for (int k = 0; k < args->repeat; ++k) {
         Timer total;
+        const double cpu_start = process_cpu_s();
         pipeline::RegisterRequest req;
         req.scan = io::read_mesh(dir / "scan.ply");
         req.scan_name = (dir / "scan.ply").string();
@@ -165,9 +186,12 @@ void register_bench(CLI::App& app, int& exit_code) {
         req.options = options;
         if (!args->no_landmarks && std::filesystem::exists(dir / "landmarks.mrk.json"))
           req.landmarks = io::read_landmarks(dir / "landmarks.mrk.json");
+        const double cpu_register = process_cpu_s();
         last = pipeline::register_scan(req);
+        cpus.push_back(process_cpu_s() - cpu_register);
         if (last.usable()) pipeline::write_register_outputs(scratch, last, *model, true, {}, output_options);
         totals.push_back(total.seconds());
+        total_cpus.push_back(process_cpu_s() - cpu_start);
         times.push_back(last.time_s);
         if (last.usable()) pipeline::write_report_html(scratch / "report.html", last, model->name);
         fulls.push_back(total.seconds());
@@ -176,27 +200,33 @@ void register_bench(CLI::App& app, int& exit_code) {
       medians.push_back(med);
       total_medians.push_back(total_med);
       full_medians.push_back(full_med);
-      std::printf("%-24s %9.4f %9.4f %9.4f %6zu %10.3f %10.3f %8s\n", dir.filename().string().c_str(), med, total_med,
-                  full_med, last.fit.summary.iterations.size(), last.surface.mae, last.landmarks.stats.mae,
-                  last.usable() ? "ok" : "FAILED");
+      cpu_medians.push_back(median(cpus));
+      total_cpu_medians.push_back(median(total_cpus));
+      std::printf("%-24s %9.4f %9.4f %9.4f %9.4f %9.4f %6zu %10.3f %10.3f %8s\n", dir.filename().string().c_str(), med,
+                  total_med, full_med, median(cpus), median(total_cpus), last.fit.summary.iterations.size(),
+                  last.surface.mae, last.landmarks.stats.mae, last.usable() ? "ok" : "FAILED");
       cases.push_back({{"case", dir.filename().string()}, {"time_s_median", med}, {"time_s_all", times},
                        {"total_s_median", total_med}, {"total_s_all", totals}, {"full_s_median", full_med},
-                       {"full_s_all", fulls},
+                       {"full_s_all", fulls}, {"cpu_s_median", median(cpus)}, {"cpu_s_all", cpus},
+                       {"total_cpu_s_median", median(total_cpus)}, {"total_cpu_s_all", total_cpus},
                        {"iterations", last.fit.summary.iterations.size()}, {"usable", last.usable()},
                        {"surface_mae_mm", last.surface.mae}, {"landmark_mae_mm", last.landmarks.stats.mae}});
     }
     std::error_code ec;
     std::filesystem::remove_all(scratch, ec);
-    std::printf("median over cases of the per-case median time_s: %.4f s, total_s: %.4f s, full_s: %.4f s (%zu cases, "
-                "%d runs each, %d threads)\n",
-                median(medians), median(total_medians), median(full_medians), medians.size(), args->repeat,
-                fit::resolve_threads(options.threads));
+    double load[1] = {0.0};
+    if (getloadavg(load, 1) != 1) load[0] = -1;
+    std::printf("median over cases of the per-case median time_s: %.4f s, total_s: %.4f s, full_s: %.4f s, cpu_s: "
+                "%.4f s, tot_cpu_s: %.4f s (%zu cases, %d runs each, %d threads, load average %.2f)\n",
+                median(medians), median(total_medians), median(full_medians), median(cpu_medians),
+                median(total_cpu_medians), medians.size(), args->repeat, fit::resolve_threads(options.threads), load[0]);
     if (!args->json_out.empty()) {
       std::ofstream f(args->json_out);
       if (!f) throw IoError(args->json_out, "cannot open for writing");
       f << nlohmann::json{{"cases", cases}, {"median_time_s", median(medians)},
                          {"median_total_s", median(total_medians)}, {"median_full_s", median(full_medians)},
-                         {"repeat", args->repeat},
+                         {"median_cpu_s", median(cpu_medians)}, {"median_total_cpu_s", median(total_cpu_medians)},
+                         {"load_average", load[0]}, {"repeat", args->repeat},
                          {"threads", fit::resolve_threads(options.threads)}}
                 .dump(1)
         << "\n";

@@ -1,6 +1,7 @@
 // Where ClosestPointIndex's build time goes, stage by stage, on a large mesh (torso-sized bumpy
 // ellipsoid, 327,680 triangles, like a scan) and a small one (5,120 triangles, like the
-// template the registration re-indexes every iteration):
+// template the registration re-indexes every iteration), and the large one's build on 1 and 2
+// threads:
 //
 //   build-*/bench/index_build_bench --benchmark_repetitions=5 \
 //       --benchmark_report_aggregates_only=true
@@ -47,6 +48,19 @@ void BM_IndexBuild(benchmark::State& state) {
     benchmark::DoNotOptimize(index);
   }
   set_counters(state, m);
+}
+
+// The build on range(1) threads (wall time: the work is spread over the threads; the index is
+// the same bits for any number).
+void BM_IndexBuildThreads(benchmark::State& state) {
+  const TriangleMesh& m = mesh(static_cast<int>(state.range(0)));
+  const int threads = static_cast<int>(state.range(1));
+  for (auto _ : state) {
+    breastfit::spatial::ClosestPointIndex index(m, threads);
+    benchmark::DoNotOptimize(index);
+  }
+  set_counters(state, m);
+  state.counters["threads"] = threads;
 }
 
 void BM_MeshCopy(benchmark::State& state) {
@@ -118,6 +132,7 @@ STAGE(BM_VertexNormals);
 STAGE(BM_MortonOrder);
 STAGE(BM_RadixSort);
 STAGE(BM_MortonTopology);
+BENCHMARK(BM_IndexBuildThreads)->Args({7, 1})->Args({7, 2})->UseRealTime()->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 

@@ -1,6 +1,7 @@
 // `breastfit bench` on a synthetic case made by `breastfit synth`: the table has the solver time
-// and the whole run's time per case and their medians; --json writes every run; the thread
-// count is reported and does not change the fit.
+// and the whole run's time per case, their CPU times and their medians; --json writes every run;
+// the thread count and the load are reported and the threads do not change the fit; --refit
+// moves a landmark by --refit-mm.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -31,21 +32,31 @@ TEST(BenchCommand, PrintsSolverAndWholeRunTimesPerCaseAndTheirMedians) {
                             &out),
               0)
         << out;
-    EXPECT_TRUE(std::regex_search(out, std::regex(R"(case\s+time_s\s+total_s\s+full_s\s+iters)"))) << out;
-    EXPECT_TRUE(std::regex_search(out, std::regex(R"(c4\s+\d+\.\d+\s+\d+\.\d+\s+\d+\.\d+\s+\d+\s+[\d.]+\s+[\d.]+\s+ok)")))
+    EXPECT_TRUE(std::regex_search(out, std::regex(R"(case\s+time_s\s+total_s\s+full_s\s+cpu_s\s+tot_cpu_s\s+iters)")))
         << out;
-    EXPECT_NE(out.find("(1 cases, 2 runs each, " + std::to_string(threads) + " threads)"), std::string::npos) << out;
+    EXPECT_TRUE(std::regex_search(
+        out, std::regex(R"(c4\s+\d+\.\d+\s+\d+\.\d+\s+\d+\.\d+\s+\d+\.\d+\s+\d+\.\d+\s+\d+\s+[\d.]+\s+[\d.]+\s+ok)")))
+        << out;
+    EXPECT_NE(out.find("(1 cases, 2 runs each, " + std::to_string(threads) + " threads, load average "),
+              std::string::npos)
+        << out;
     std::ifstream f(json);
     runs[threads - 1] = nlohmann::json::parse(f);
     const auto& c = runs[threads - 1]["cases"][0];
     ASSERT_EQ(c["time_s_all"].size(), 2u);
     ASSERT_EQ(c["total_s_all"].size(), 2u);
     ASSERT_EQ(c["full_s_all"].size(), 2u);
-    // The whole run holds the solver's time; with report.html it takes longer still.
+    ASSERT_EQ(c["cpu_s_all"].size(), 2u);
+    ASSERT_EQ(c["total_cpu_s_all"].size(), 2u);
+    // The whole run holds the solver's time, with report.html it takes longer still, and its CPU
+    // time holds the registration's.
     for (int k = 0; k < 2; ++k) {
       EXPECT_GT(c["total_s_all"][k].get<double>(), c["time_s_all"][k].get<double>());
       EXPECT_GT(c["full_s_all"][k].get<double>(), c["total_s_all"][k].get<double>());
+      EXPECT_GT(c["cpu_s_all"][k].get<double>(), 0.0);
+      EXPECT_GE(c["total_cpu_s_all"][k].get<double>(), c["cpu_s_all"][k].get<double>());
     }
+    EXPECT_TRUE(runs[threads - 1]["load_average"].is_number());
     EXPECT_EQ(runs[threads - 1]["threads"], threads);
   }
   // Same fit whatever the thread count.
@@ -93,6 +104,28 @@ TEST(BenchCommand, MeshChoosesOneSkinnedMeshOfATemplate) {
   EXPECT_NE(out.find("choose one with --mesh NAME"), std::string::npos) << out;
   ASSERT_EQ(test::run_cli(common + " --mesh Second", &out), 0) << out;
   EXPECT_TRUE(std::regex_search(out, std::regex(R"(c1\s+\d+\.\d+)"))) << out;
+}
+
+TEST(BenchCommand, RefitMovesALandmarkByTheAskedDistance) {
+  if (test::cli_path().empty()) GTEST_SKIP() << "CLI not built";
+  const fs::path tmp = test::temp_dir();
+  const fs::path cases = tmp / "cases";
+  std::string out;
+  ASSERT_EQ(test::run_cli("synth --quiet --seed 5 --out '" + (cases / "c5").string() + "'", &out), 0) << out;
+  const fs::path json = tmp / "refit.json";
+  ASSERT_EQ(test::run_cli("bench '" + cases.string() + "' --refit --refit-mm 6 -n 2 --threads 1 --json '" +
+                              json.string() + "'",
+                          &out),
+            0)
+      << out;
+  EXPECT_NE(out.find("re-fit after a 6.0 mm move, median of all 2:"), std::string::npos) << out;
+  std::ifstream f(json);
+  const auto j = nlohmann::json::parse(f);
+  EXPECT_EQ(j["move_mm"], 6.0);
+  EXPECT_EQ(j["cases"][0]["refit_ms_all"].size(), 2u);
+  EXPECT_EQ(j["cases"][0]["usable"], true);
+  // A negative distance is refused as a usage error.
+  EXPECT_EQ(test::run_cli("bench '" + cases.string() + "' --refit --refit-mm -1", &out), 2) << out;
 }
 
 }  // namespace

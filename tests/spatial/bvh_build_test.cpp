@@ -102,7 +102,7 @@ BvhNodes reference_topology(const std::vector<std::uint64_t>& keys, int max_leaf
 TEST(BvhBuild, MortonTopologyMatchesReference) {
   Rng rng(6);
   for (const int max_leaf : {1, 2, 4, 8}) {
-    for (const std::size_t n : {1u, 2u, 5u, 100u, 5000u}) {
+    for (const std::size_t n : {1u, 2u, 5u, 100u, 5000u, 70000u}) {
       for (const int distinct_bits : {2, 12, 63}) {  // few distinct keys → equal-key halving
         std::vector<std::uint64_t> keys(n);
         for (auto& k : keys) {
@@ -110,15 +110,18 @@ TEST(BvhBuild, MortonTopologyMatchesReference) {
           if (distinct_bits < 63) k &= ~((std::uint64_t{1} << (63 - distinct_bits)) - 1);
         }
         std::sort(keys.begin(), keys.end());
-        BvhNodes nodes;
-        const int depth = build_morton_topology(keys, max_leaf, nodes);
         int ref_depth = 0;
         const BvhNodes ref = reference_topology(keys, max_leaf, ref_depth);
-        EXPECT_EQ(depth, ref_depth);
-        ASSERT_EQ(nodes.size(), ref.size());
-        for (std::size_t i = 0; i < nodes.size(); ++i) {
-          EXPECT_EQ(nodes[i].first, ref[i].first) << "node " << i;
-          EXPECT_EQ(nodes[i].count, ref[i].count) << "node " << i;
+        // Serially, and with subtrees built concurrently and spliced in: the same nodes.
+        for (const int threads : {1, 2, 3}) {
+          BvhNodes nodes;
+          const int depth = build_morton_topology(keys, max_leaf, nodes, threads);
+          EXPECT_EQ(depth, ref_depth) << threads << " threads";
+          ASSERT_EQ(nodes.size(), ref.size()) << threads << " threads";
+          for (std::size_t i = 0; i < nodes.size(); ++i) {
+            ASSERT_EQ(nodes[i].first, ref[i].first) << "node " << i << ", " << threads << " threads";
+            ASSERT_EQ(nodes[i].count, ref[i].count) << "node " << i << ", " << threads << " threads";
+          }
         }
       }
     }
@@ -143,8 +146,13 @@ std::vector<TriangleMesh> test_meshes() {
 }
 
 TEST(BvhBuild, MeshMortonOrderIsTheBoxBuildOrder) {
-  for (const TriangleMesh& m : test_meshes()) {
+  std::vector<TriangleMesh> meshes = test_meshes();
+  meshes.push_back(meshes::icosphere(6, 50.0));  // 82k faces: several chunks of the parallel loops
+  for (const TriangleMesh& m : meshes) {
     const MortonSorted sorted = triangle_morton_order(m);
+    const MortonSorted parallel = triangle_morton_order(m, 3);
+    EXPECT_EQ(parallel.codes, sorted.codes);
+    EXPECT_EQ(parallel.prims, sorted.prims);
     ASSERT_EQ(sorted.codes.size(), static_cast<std::size_t>(m.num_faces()));
     EXPECT_TRUE(std::is_sorted(sorted.codes.begin(), sorted.codes.end()));
     const Bvh bvh = Bvh::build(triangle_boxes(m));  // Morton by default

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <limits>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -336,6 +337,20 @@ TEST(ClosestPointIndex, OwnsACopyOfTheMeshAndMoves) {
   EXPECT_EQ(other.closest(q).face, before.face);
 }
 
+/// Every field of the two indices' answers to `qs` is the same bits.
+void expect_same_answers(const ClosestPointIndex& x, const ClosestPointIndex& y, const std::vector<Vec3>& qs) {
+  for (const Vec3& q : qs) {
+    const ClosestPoint a = x.closest(q), b = y.closest(q);
+    ASSERT_EQ(a.face, b.face);
+    ASSERT_EQ(a.sq_dist, b.sq_dist);
+    ASSERT_EQ(a.point, b.point);
+    ASSERT_EQ(a.bary, b.bary);
+    ASSERT_EQ(a.feature, b.feature);
+    ASSERT_EQ(a.on_boundary, b.on_boundary);
+    ASSERT_EQ(x.smooth_normal(a), y.smooth_normal(b));
+  }
+}
+
 TEST(ClosestPointIndex, TakingOverTheMeshGivesTheSameIndex) {
   const TriangleMesh m = meshes::noisy_sheet(30, 2.0, 1.0, 0.1, 21);
   const ClosestPointIndex copied(m);
@@ -343,15 +358,19 @@ TEST(ClosestPointIndex, TakingOverTheMeshGivesTheSameIndex) {
   const ClosestPointIndex taken(std::move(tmp));
   EXPECT_EQ(taken.mesh().V, m.V);
   EXPECT_EQ(taken.mesh().F, m.F);
-  for (const Vec3& q : queries(m, 2000, 4.0, 1.5, 22)) {
-    const ClosestPoint a = copied.closest(q), b = taken.closest(q);
-    ASSERT_EQ(a.face, b.face);
-    ASSERT_EQ(a.sq_dist, b.sq_dist);
-    ASSERT_EQ(a.point, b.point);
-    ASSERT_EQ(a.bary, b.bary);
-    ASSERT_EQ(a.feature, b.feature);
-    ASSERT_EQ(a.on_boundary, b.on_boundary);
-    ASSERT_EQ(copied.smooth_normal(a), taken.smooth_normal(b));
+  expect_same_answers(copied, taken, queries(m, 2000, 4.0, 1.5, 22));
+}
+
+TEST(ClosestPointIndex, SameIndexWhateverTheThreadsOfTheBuild) {
+  // Large enough for several chunks of every parallel loop of the build (faces, subtrees,
+  // leaves), with an open border and holes.
+  const TriangleMesh m = meshes::noisy_sheet(220, 1.0, 0.4, 0.05, 31);
+  ASSERT_GT(m.num_faces(), 80000);
+  const ClosestPointIndex serial(m);
+  const std::vector<Vec3> qs = queries(m, 3000, 3.0, 1.0, 32);
+  for (const int threads : {2, 3}) {
+    SCOPED_TRACE(std::to_string(threads) + " threads");
+    expect_same_answers(serial, ClosestPointIndex(m, threads), qs);
   }
 }
 

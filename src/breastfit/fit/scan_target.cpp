@@ -5,14 +5,15 @@
 
 #include "breastfit/core/errors.h"
 #include "breastfit/core/rng.h"
+#include "breastfit/fit/parallel_chunks.h"
 #include "breastfit/mesh/normals.h"
 #include "breastfit/spatial/closest_point_index.h"
 
 namespace breastfit::fit {
 
-ScanTarget::ScanTarget(const TriangleMesh& scan_mm, int num_samples) {
+ScanTarget::ScanTarget(const TriangleMesh& scan_mm, int num_samples, int threads) {
   if (scan_mm.num_faces() == 0) throw InvalidInput("the scan has no triangles");
-  index_ = std::make_unique<spatial::ClosestPointIndex>(scan_mm);
+  index_ = std::make_unique<spatial::ClosestPointIndex>(scan_mm, resolve_threads(threads));
   const TriangleMesh& mesh = index_->mesh();
   // Area-uniform deterministic samples.
   const Index nf = mesh.num_faces();

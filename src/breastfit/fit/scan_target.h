@@ -25,8 +25,10 @@ struct ScanMatch {
 class ScanTarget {
  public:
   /// \param scan_mm the scan in millimetres (a triangle mesh; point clouds are meshed by the caller).
+  /// \param threads threads of the index build, as FitOptions::threads (0: all free cores); the
+  ///        target is the same bits for any number.
   /// \throws InvalidInput when the scan has no triangles.
-  explicit ScanTarget(const TriangleMesh& scan_mm, int num_samples = 1500);
+  explicit ScanTarget(const TriangleMesh& scan_mm, int num_samples = 1500, int threads = 1);
   ~ScanTarget();
   ScanTarget(ScanTarget&&) noexcept;
 

@@ -37,7 +37,8 @@ PreparedTarget prepare_target(const TriangleMesh& scan, const std::string& scan_
   t.scan = prepare_scan(scan, scan_name, units);
   t.timings.push_back({"scan_preparation", phase.seconds()});
   phase.reset();
-  t.target = std::make_unique<fit::ScanTarget>(t.scan.mesh_mm, options.correspondences.reverse_samples);
+  t.target = std::make_unique<fit::ScanTarget>(t.scan.mesh_mm, options.correspondences.reverse_samples,
+                                                options.threads);
   t.timings.push_back({"index_build", phase.seconds()});
   return t;
 }

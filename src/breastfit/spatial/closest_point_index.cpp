@@ -15,6 +15,7 @@
 #include "breastfit/core/errors.h"
 #include "breastfit/mesh/normals.h"
 #include "breastfit/spatial/detail/bvh.h"
+#include "breastfit/spatial/detail/parallel_for.h"
 #include "breastfit/spatial/detail/point_triangle_kernel.h"
 #include "breastfit/spatial/detail/triangle_tables.h"
 
@@ -110,37 +111,128 @@ struct ClosestPointIndex::Impl {
   /// Builds the tables and the tree (LBVH over the faces' box centres; the same tree as
   /// detail::Bvh::build(detail::triangle_boxes(mesh)) with the Morton method, built without
   /// materialising the boxes: codes come from the mesh, leaf boxes from the leaf blocks).
-  explicit Impl(const TriangleMesh& m) : mesh(m) { build(); }
-  explicit Impl(TriangleMesh&& m) : mesh(std::move(m)) { build(); }
+  Impl(const TriangleMesh& m, int threads) : mesh(m) { build(threads); }
+  Impl(TriangleMesh&& m, int threads) : mesh(std::move(m)) { build(threads); }
 
-  void build() {
+  void build(int threads) {
     detail::validate_triangle_mesh(mesh, "ClosestPointIndex");
-    face_flags = detail::triangle_flags(mesh, &vertex_boundary);
+    face_flags = detail::triangle_flags(mesh, &vertex_boundary, threads);
     vertex_normals = mesh::vertex_normals(mesh);
     std::vector<std::uint32_t> prims;
     {
-      detail::MortonSorted sorted = detail::triangle_morton_order(mesh);
-      detail::build_morton_topology(sorted.codes, kMaxLeafSize, nodes);
+      detail::MortonSorted sorted = detail::triangle_morton_order(mesh, threads);
+      detail::build_morton_topology(sorted.codes, kMaxLeafSize, nodes, threads);
       prims = std::move(sorted.prims);
     }
-    build_leaf_blocks(prims);
+    build_leaf_blocks(prims, threads);
     detail::fit_inner_boxes(nodes);
   }
 
-  /// Replaces each leaf's slot range by its block (see LeafHeader) and sets its box: the
-  /// bounds of the leaf's vertices rounded outward to float (= the union of its triangles'
-  /// boxes).
-  void build_leaf_blocks(const std::vector<std::uint32_t>& prims) {
+  /// Writes leaf node `n`'s block at lines [line, line + lines) of `blocks` (header `h`, then the
+  /// corners `verts[0, nv)`), sets its box (the bounds of those vertices rounded outward to float
+  /// = the union of its triangles' boxes) and points the node at the block.
+  void write_leaf_block(detail::BvhNode& n, const LeafHeader& h, const Index* verts, int nv,
+                        std::size_t line, std::size_t lines) {
+    const double* V = mesh.V.data();
+    unsigned char* base = blocks[line].bytes;
+    std::memset(blocks[line + lines - 1].bytes, 0, 64);  // deterministic padding
+    std::memset(base, 0, kHeaderBytes);
+    std::memcpy(base, &h, sizeof(LeafHeader));
+    auto* coords = reinterpret_cast<double*>(base + kHeaderBytes);
+    double lo[3] = {kInf, kInf, kInf}, hi[3] = {-kInf, -kInf, -kInf};
+    for (int j = 0; j < nv; ++j) {
+      const double* p = V + 3 * static_cast<std::ptrdiff_t>(verts[j]);
+      for (int k = 0; k < 3; ++k) {
+        coords[3 * j + k] = p[k];
+        lo[k] = std::min(lo[k], p[k]);
+        hi[k] = std::max(hi[k], p[k]);
+      }
+    }
+    for (int k = 0; k < 3; ++k) {
+      n.lo[k] = detail::round_down_to_float(lo[k]);
+      n.hi[k] = detail::round_up_to_float(hi[k]);
+    }
+    n.first = static_cast<std::int32_t>(line);
+    n.count = static_cast<std::int32_t>(lines);
+  }
+
+  /// The header of leaf `n` (slots of `prims`) but its corners.
+  LeafHeader leaf_header(const detail::BvhNode& n, const std::vector<std::uint32_t>& prims) const {
+    LeafHeader h{};
+    h.count = static_cast<std::uint8_t>(n.count);
+    for (int t = 0; t < n.count; ++t) {
+      const auto f = static_cast<std::int32_t>(prims[static_cast<std::size_t>(n.first + t)]);
+      h.face[t] = f;
+      h.flags[t] = face_flags[static_cast<std::size_t>(f)];
+    }
+    return h;
+  }
+
+  static std::size_t block_lines(int num_vertices) {
+    return (kHeaderBytes + 24 * static_cast<std::size_t>(num_vertices) + 63) / 64;
+  }
+
+  /// Replaces each leaf's slot range by its block (see LeafHeader) and sets its box. A leaf's
+  /// distinct corners are in first-use order. One thread: one pass in node order, corners
+  /// deduplicated with a per-vertex stamp. More: two passes over chunks of leaves, the blocks'
+  /// sizes and then (at offsets from their prefix sums) the blocks, corners deduplicated within
+  /// the leaf. Both give the same bytes.
+  void build_leaf_blocks(const std::vector<std::uint32_t>& prims, int threads) {
+    if (threads <= 1) {
+      build_leaf_blocks_serial(prims);
+      return;
+    }
+    std::vector<std::int32_t> leaves;
+    leaves.reserve(nodes.size() / 2 + 1);
+    for (std::size_t i = 0; i < nodes.size(); ++i)
+      if (i != 1 && nodes[i].is_leaf()) leaves.push_back(static_cast<std::int32_t>(i));
+    constexpr std::size_t kLeafChunk = 2048;
+    // Distinct corners of a leaf's triangles in first-use order, their number returned.
+    const Index* F = mesh.F.data();
+    auto corners = [&](const detail::BvhNode& n, Index* verts, LeafHeader* h) {
+      int nv = 0;
+      for (int t = 0; t < n.count; ++t) {
+        const auto f = static_cast<std::ptrdiff_t>(prims[static_cast<std::size_t>(n.first + t)]);
+        for (int k = 0; k < 3; ++k) {
+          const Index v = F[3 * f + k];
+          int slot = 0;
+          while (slot < nv && verts[slot] != v) ++slot;
+          if (slot == nv) verts[nv++] = v;
+          if (h) h->corner[t][k] = static_cast<std::uint8_t>(slot);
+        }
+      }
+      return nv;
+    };
+    std::vector<std::size_t> start(leaves.size() + 1, 0);
+    detail::parallel_for_chunks(leaves.size(), kLeafChunk, threads, [&](std::size_t, std::size_t b, std::size_t e) {
+      Index verts[3 * kMaxLeafSize];
+      for (std::size_t l = b; l < e; ++l)
+        start[l + 1] = block_lines(corners(nodes[static_cast<std::size_t>(leaves[l])], verts, nullptr));
+    });
+    for (std::size_t l = 0; l < leaves.size(); ++l) start[l + 1] += start[l];
+    blocks.resize(start.back());  // uninitialised: every line is written below
+    detail::parallel_for_chunks(leaves.size(), kLeafChunk, threads, [&](std::size_t, std::size_t b, std::size_t e) {
+      Index verts[3 * kMaxLeafSize];
+      for (std::size_t l = b; l < e; ++l) {
+        detail::BvhNode& n = nodes[static_cast<std::size_t>(leaves[l])];
+        LeafHeader h = leaf_header(n, prims);
+        const int nv = corners(n, verts, &h);
+        h.num_vertices = static_cast<std::uint8_t>(nv);
+        write_leaf_block(n, h, verts, nv, start[l], start[l + 1] - start[l]);
+      }
+    });
+  }
+
+  void build_leaf_blocks_serial(const std::vector<std::uint32_t>& prims) {
     // Upper bound: every leaf full with 3 distinct corners per triangle. The buffer is not
     // initialised, so this only claims address space; lines are written (and paged in) once,
     // in order.
     std::size_t max_lines = 0;
     for (const detail::BvhNode& n : nodes) {
-      if (n.is_leaf()) max_lines += (kHeaderBytes + 3 * n.count * 24 + 63) / 64;
+      if (n.is_leaf()) max_lines += block_lines(3 * n.count);
     }
-    blocks.resize(max_lines);  // uninitialised: pages are touched only where written
+    blocks.resize(max_lines);
     std::size_t used = 0;
-    const double* V = mesh.V.data();
     const Index* F = mesh.F.data();
     // Distinct corners of a leaf, in first-use order: seen[v] = (leaf number << 4) | slot of
     // v in the current leaf's block (leaf numbers start at 1, so 0 is "not seen").
@@ -154,14 +246,11 @@ struct ClosestPointIndex::Impl {
         std::fill(seen.begin(), seen.end(), 0u);
         leaf_number = 1;
       }
-      LeafHeader h{};
-      h.count = static_cast<std::uint8_t>(n.count);
+      LeafHeader h = leaf_header(n, prims);
       Index verts[3 * kMaxLeafSize];
       int nv = 0;
       for (int t = 0; t < n.count; ++t) {
-        const auto f = static_cast<std::int32_t>(prims[n.first + t]);
-        h.face[t] = f;
-        h.flags[t] = face_flags[f];
+        const Index f = h.face[t];
         for (int k = 0; k < 3; ++k) {
           const Index v = F[3 * static_cast<std::ptrdiff_t>(f) + k];
           std::uint32_t& s = seen[static_cast<std::size_t>(v)];
@@ -173,29 +262,9 @@ struct ClosestPointIndex::Impl {
         }
       }
       h.num_vertices = static_cast<std::uint8_t>(nv);
-      const std::size_t line = used;
-      const std::size_t lines = (kHeaderBytes + 24 * nv + 63) / 64;
+      const std::size_t lines = block_lines(nv);
+      write_leaf_block(n, h, verts, nv, used, lines);
       used += lines;
-      unsigned char* base = blocks[line].bytes;
-      std::memset(blocks[line + lines - 1].bytes, 0, 64);  // deterministic padding
-      std::memset(base, 0, kHeaderBytes);
-      std::memcpy(base, &h, sizeof(LeafHeader));
-      auto* coords = reinterpret_cast<double*>(base + kHeaderBytes);
-      double lo[3] = {kInf, kInf, kInf}, hi[3] = {-kInf, -kInf, -kInf};
-      for (int j = 0; j < nv; ++j) {
-        const double* p = V + 3 * static_cast<std::ptrdiff_t>(verts[j]);
-        for (int k = 0; k < 3; ++k) {
-          coords[3 * j + k] = p[k];
-          lo[k] = std::min(lo[k], p[k]);
-          hi[k] = std::max(hi[k], p[k]);
-        }
-      }
-      for (int k = 0; k < 3; ++k) {
-        n.lo[k] = detail::round_down_to_float(lo[k]);
-        n.hi[k] = detail::round_up_to_float(hi[k]);
-      }
-      n.first = static_cast<std::int32_t>(line);
-      n.count = static_cast<std::int32_t>(lines);
     }
     blocks.resize(used);  // shrinks in place
   }
@@ -330,10 +399,10 @@ struct ClosestPointIndex::Impl {
   }
 };
 
-ClosestPointIndex::ClosestPointIndex(const TriangleMesh& mesh)
-    : impl_(std::make_unique<Impl>(mesh)) {}
-ClosestPointIndex::ClosestPointIndex(TriangleMesh&& mesh)
-    : impl_(std::make_unique<Impl>(std::move(mesh))) {}
+ClosestPointIndex::ClosestPointIndex(const TriangleMesh& mesh, int threads)
+    : impl_(std::make_unique<Impl>(mesh, threads)) {}
+ClosestPointIndex::ClosestPointIndex(TriangleMesh&& mesh, int threads)
+    : impl_(std::make_unique<Impl>(std::move(mesh), threads)) {}
 ClosestPointIndex::~ClosestPointIndex() = default;
 ClosestPointIndex::ClosestPointIndex(ClosestPointIndex&&) noexcept = default;
 ClosestPointIndex& ClosestPointIndex::operator=(ClosestPointIndex&&) noexcept = default;

@@ -25,11 +25,12 @@ struct ClosestPoint {
 /// Built once over a triangle mesh (BVH); queried many times, thread-safe for queries.
 class ClosestPointIndex {
  public:
+  /// \param threads  threads of the build (>= 1; the index is the same bits for any number)
   /// \throws InvalidInput when the mesh has no triangles or non-finite vertices.
-  explicit ClosestPointIndex(const TriangleMesh& mesh);
+  explicit ClosestPointIndex(const TriangleMesh& mesh, int threads = 1);
   /// Same index, taking over `mesh` instead of copying it (for callers that build a mesh only
   /// to index it). Addition, backwards compatible.
-  explicit ClosestPointIndex(TriangleMesh&& mesh);
+  explicit ClosestPointIndex(TriangleMesh&& mesh, int threads = 1);
   ~ClosestPointIndex();
   ClosestPointIndex(ClosestPointIndex&&) noexcept;
   ClosestPointIndex& operator=(ClosestPointIndex&&) noexcept;

@@ -7,6 +7,7 @@
 #include <limits>
 #include <utility>
 
+#include "breastfit/spatial/detail/parallel_for.h"
 #include "breastfit/spatial/detail/radix_sort.h"
 
 namespace breastfit::spatial::detail {
@@ -96,24 +97,45 @@ Bvh build_morton(const std::vector<PrimBox>& boxes, int max_leaf) {
 
 }  // namespace
 
-int build_morton_topology(const std::vector<std::uint64_t>& keys, int max_leaf,
-                          BvhNodes& nodes) {
-  const auto n = static_cast<std::int32_t>(keys.size());
-  max_leaf = std::max(1, max_leaf);
+namespace {
+
+/// Where the LBVH splits the sorted keys [begin, end) (more than one key): where the highest
+/// differing bit flips, or the middle for equal keys.
+std::int32_t morton_split(const std::uint64_t* keys, std::int32_t begin, std::int32_t end) {
+  const std::uint64_t first = keys[begin], last = keys[end - 1];
+  if (first == last) return begin + (end - begin) / 2;
+  const int bit = 63 - __builtin_clzll(first ^ last);
+  const std::uint64_t mask = std::uint64_t{1} << bit;
+  // First key in the range with the bit set (keys sorted, prefix above `bit` shared, the last
+  // key has it). Branch-free binary search: the answer stays in [b, b + len).
+  const std::uint64_t* b = keys + begin;
+  std::size_t len = static_cast<std::size_t>(end - begin);
+  while (len > 1) {
+    const std::size_t half = len / 2;
+    b += (b[half - 1] & mask) ? 0 : half;
+    len -= half;
+  }
+  return static_cast<std::int32_t>(b - keys);
+}
+
+struct TopologyRange {
+  std::int32_t node, begin, end;
+  int depth;
+};
+
+/// The serial pre-order build of the subtree over keys [begin, end) whose root is nodes[root]
+/// (already allocated). With `defer_above` > 0, a range of at most `defer_above` keys (and more
+/// than max_leaf) is not expanded: `on_deferred(range)` is called instead and must append the
+/// range's whole subtree (everything the expansion would have appended) to `nodes`. Returns
+/// the deepest leaf's depth (deferred subtrees excluded).
+template <class OnDeferred>
+int topology_preorder(const std::uint64_t* keys, TopologyRange root_range, int max_leaf,
+                      BvhNodes& nodes, std::int32_t defer_above, OnDeferred&& on_deferred) {
   int max_depth = 0;
-  nodes.clear();
-  if (n == 0) return 0;
-  // Upper bound on the node count (reserving does not touch the memory).
-  nodes.reserve(2 * static_cast<std::size_t>(n) + 2);
-  nodes.resize(2);
-  struct Range {
-    std::int32_t node, begin, end;
-    int depth;
-  };
-  std::vector<Range> stack;
-  stack.push_back({0, 0, n, 0});
+  std::vector<TopologyRange> stack;
+  stack.push_back(root_range);
   while (!stack.empty()) {
-    const Range r = stack.back();
+    const TopologyRange r = stack.back();
     stack.pop_back();
     max_depth = std::max(max_depth, r.depth);
     if (r.end - r.begin <= max_leaf) {
@@ -121,24 +143,11 @@ int build_morton_topology(const std::vector<std::uint64_t>& keys, int max_leaf,
       nodes[r.node].count = r.end - r.begin;
       continue;
     }
-    const std::uint64_t first = keys[r.begin], last = keys[r.end - 1];
-    std::int32_t mid;
-    if (first == last) {
-      mid = r.begin + (r.end - r.begin) / 2;
-    } else {
-      const int bit = 63 - __builtin_clzll(first ^ last);
-      const std::uint64_t mask = std::uint64_t{1} << bit;
-      // First key in the range with the bit set (keys sorted, prefix above `bit` shared, the
-      // last key has it). Branch-free binary search: the answer stays in [b, b + len).
-      const std::uint64_t* b = keys.data() + r.begin;
-      std::size_t len = static_cast<std::size_t>(r.end - r.begin);
-      while (len > 1) {
-        const std::size_t half = len / 2;
-        b += (b[half - 1] & mask) ? 0 : half;
-        len -= half;
-      }
-      mid = static_cast<std::int32_t>(b - keys.data());
+    if (r.end - r.begin <= defer_above) {
+      on_deferred(r);
+      continue;
     }
+    const std::int32_t mid = morton_split(keys, r.begin, r.end);
     const auto left = static_cast<std::int32_t>(nodes.size());
     nodes.resize(nodes.size() + 2);
     nodes[r.node].first = left;
@@ -146,6 +155,63 @@ int build_morton_topology(const std::vector<std::uint64_t>& keys, int max_leaf,
     stack.push_back({left + 1, mid, r.end, r.depth + 1});
     stack.push_back({left, r.begin, mid, r.depth + 1});
   }
+  return max_depth;
+}
+
+/// Key ranges up to this size are built as separate subtrees, concurrently (threads > 1).
+constexpr std::int32_t kParallelSubtreeKeys = 4096;
+
+}  // namespace
+
+int build_morton_topology(const std::vector<std::uint64_t>& keys, int max_leaf, BvhNodes& nodes,
+                          int threads) {
+  const auto n = static_cast<std::int32_t>(keys.size());
+  max_leaf = std::max(1, max_leaf);
+  nodes.clear();
+  if (n == 0) return 0;
+  // Upper bound on the node count (reserving does not touch the memory).
+  nodes.reserve(2 * static_cast<std::size_t>(n) + 2);
+  nodes.resize(2);
+  const std::uint64_t* k = keys.data();
+  auto no_defer = [](const TopologyRange&) {};
+  if (threads <= 1 || n <= kParallelSubtreeKeys) return topology_preorder(k, {0, 0, n, 0}, max_leaf, nodes, 0, no_defer);
+
+  // 1. The ranges the top of the tree leaves to subtrees, in pre-order (a dry run of the top).
+  std::vector<TopologyRange> deferred;
+  {
+    BvhNodes top;
+    top.resize(2);
+    topology_preorder(k, {0, 0, n, 0}, max_leaf, top, kParallelSubtreeKeys,
+                      [&](const TopologyRange& r) { deferred.push_back(r); });
+  }
+  // 2. Each subtree on its own (root at 0, padding at 1, pairs from 2), concurrently.
+  std::vector<BvhNodes> sub(deferred.size());
+  std::vector<int> sub_depth(deferred.size(), 0);
+  parallel_for_chunks(deferred.size(), 1, threads, [&](std::size_t t, std::size_t, std::size_t) {
+    const TopologyRange& r = deferred[t];
+    sub[t].reserve(2 * static_cast<std::size_t>(r.end - r.begin) + 2);
+    sub[t].resize(2);
+    sub_depth[t] = topology_preorder(k, {0, r.begin, r.end, r.depth}, max_leaf, sub[t], 0, no_defer);
+  });
+  // 3. The top again, splicing each subtree in where the serial build would have appended it:
+  // the same nodes, at the same indices.
+  std::size_t next = 0;
+  int max_depth = topology_preorder(k, {0, 0, n, 0}, max_leaf, nodes, kParallelSubtreeKeys,
+                                    [&](const TopologyRange& r) {
+                                      const BvhNodes& s = sub[next];
+                                      const auto base = static_cast<std::int32_t>(nodes.size());
+                                      const std::int32_t shift = base - 2;  // local pair 2 → base
+                                      auto relocate = [&](BvhNode x) {
+                                        if (!x.is_leaf()) x.first += shift;
+                                        return x;
+                                      };
+                                      nodes[r.node] = relocate(s[0]);
+                                      nodes.resize(nodes.size() + (s.size() - 2));
+                                      for (std::size_t i = 2; i < s.size(); ++i)
+                                        nodes[static_cast<std::size_t>(shift) + i] = relocate(s[i]);
+                                      ++next;
+                                    });
+  for (const int d : sub_depth) max_depth = std::max(max_depth, d);
   return max_depth;
 }
 

@@ -141,9 +141,10 @@ struct MortonGrid {
 /// are left unset: the caller sets the leaves' and then calls fit_inner_boxes(). Returns the
 /// depth of the deepest leaf (at most 63 bit levels plus log2(n) halvings); no keys give no
 /// nodes. Used by Bvh::build (Morton) and by ClosestPointIndex, which computes its codes and
-/// leaf boxes straight from the mesh.
+/// leaf boxes straight from the mesh. With `threads` > 1 the subtrees below a few thousand keys
+/// are built concurrently and spliced in place: the same nodes at the same indices as serially.
 int build_morton_topology(const std::vector<std::uint64_t>& sorted_codes, int max_leaf,
-                          BvhNodes& nodes);
+                          BvhNodes& nodes, int threads = 1);
 
 /// Sets every inner node's box to the union of its children's (leaves must be set already;
 /// children always follow their parent, so one backwards sweep suffices).

@@ -8,10 +8,17 @@
 #include <utility>
 
 #include "breastfit/core/errors.h"
+#include "breastfit/spatial/detail/parallel_for.h"
 #include "breastfit/spatial/detail/point_triangle_kernel.h"
 #include "breastfit/spatial/detail/radix_sort.h"
 
 namespace breastfit::spatial::detail {
+namespace {
+
+/// Faces per chunk of the parallel loops (fixed: the tables do not depend on the threads).
+constexpr std::size_t kFaceChunk = 16384;
+
+}  // namespace
 
 void validate_triangle_mesh(const TriangleMesh& mesh, const std::string& who) {
   if (mesh.num_faces() == 0) throw InvalidInput(who + ": the mesh has no triangles");
@@ -29,18 +36,20 @@ void validate_triangle_mesh(const TriangleMesh& mesh, const std::string& who) {
 }
 
 std::vector<std::uint8_t> triangle_flags(const TriangleMesh& mesh,
-                                         std::vector<std::uint8_t>* vertex_boundary) {
+                                         std::vector<std::uint8_t>* vertex_boundary, int threads) {
   const Index nf = mesh.num_faces();
   const Index nv = mesh.num_vertices();
   std::vector<std::uint8_t> flags(nf, 0);
   const double* V = mesh.V.data();
-  for (Index f = 0; f < nf; ++f) {
-    if (is_degenerate_triangle(V + 3 * static_cast<std::ptrdiff_t>(mesh.F(f, 0)),
-                               V + 3 * static_cast<std::ptrdiff_t>(mesh.F(f, 1)),
-                               V + 3 * static_cast<std::ptrdiff_t>(mesh.F(f, 2)))) {
-      flags[f] |= kFlagDegenerate;
+  parallel_for_chunks(static_cast<std::size_t>(nf), kFaceChunk, threads, [&](std::size_t, std::size_t b, std::size_t e) {
+    for (auto f = static_cast<Index>(b); f < static_cast<Index>(e); ++f) {
+      if (is_degenerate_triangle(V + 3 * static_cast<std::ptrdiff_t>(mesh.F(f, 0)),
+                                 V + 3 * static_cast<std::ptrdiff_t>(mesh.F(f, 1)),
+                                 V + 3 * static_cast<std::ptrdiff_t>(mesh.F(f, 2)))) {
+        flags[f] |= kFlagDegenerate;
+      }
     }
-  }
+  });
   // Undirected edges bucketed by their smaller vertex (counting sort), then counted within a
   // bucket with a per-vertex stamp: linear time, no hashing, no sorting.
   const Index* F = mesh.F.data();  // row-major #F by 3
@@ -152,7 +161,7 @@ std::vector<std::uint32_t> morton_order(const Points& P) {
   return order;
 }
 
-MortonSorted triangle_morton_order(const TriangleMesh& mesh) {
+MortonSorted triangle_morton_order(const TriangleMesh& mesh, int threads) {
   const Index nf = mesh.num_faces();
   const double* V = mesh.V.data();
   const Index* F = mesh.F.data();
@@ -170,25 +179,41 @@ MortonSorted triangle_morton_order(const TriangleMesh& mesh) {
     }
   };
   constexpr double kInf = std::numeric_limits<double>::infinity();
-  double clo[3] = {kInf, kInf, kInf}, chi[3] = {-kInf, -kInf, -kInf};
-  for (Index f = 0; f < nf; ++f) {
-    double c[3];
-    centre(f, c);
-    for (int k = 0; k < 3; ++k) {
-      clo[k] = std::min(clo[k], c[k]);
-      chi[k] = std::max(chi[k], c[k]);
+  // Bounds of the centres per chunk, then over the chunks (min and max are exact: any order).
+  const auto n = static_cast<std::size_t>(nf);
+  struct Bounds {
+    double lo[3] = {kInf, kInf, kInf}, hi[3] = {-kInf, -kInf, -kInf};
+  };
+  std::vector<Bounds> chunk_bounds(chunk_count(n, kFaceChunk));
+  parallel_for_chunks(n, kFaceChunk, threads, [&](std::size_t chunk, std::size_t b, std::size_t e) {
+    Bounds& bo = chunk_bounds[chunk];
+    for (auto f = static_cast<Index>(b); f < static_cast<Index>(e); ++f) {
+      double c[3];
+      centre(f, c);
+      for (int k = 0; k < 3; ++k) {
+        bo.lo[k] = std::min(bo.lo[k], c[k]);
+        bo.hi[k] = std::max(bo.hi[k], c[k]);
+      }
     }
-  }
-  const MortonGrid grid = MortonGrid::over(clo, chi);
+  });
+  Bounds all;
+  for (const Bounds& bo : chunk_bounds)
+    for (int k = 0; k < 3; ++k) {
+      all.lo[k] = std::min(all.lo[k], bo.lo[k]);
+      all.hi[k] = std::max(all.hi[k], bo.hi[k]);
+    }
+  const MortonGrid grid = MortonGrid::over(all.lo, all.hi);
   MortonSorted out;
   out.codes.resize(nf);
   out.prims.resize(nf);
-  for (Index f = 0; f < nf; ++f) {
-    double c[3];
-    centre(f, c);
-    out.codes[f] = grid.code(c);
-    out.prims[f] = static_cast<std::uint32_t>(f);
-  }
+  parallel_for_chunks(n, kFaceChunk, threads, [&](std::size_t, std::size_t b, std::size_t e) {
+    for (auto f = static_cast<Index>(b); f < static_cast<Index>(e); ++f) {
+      double c[3];
+      centre(f, c);
+      out.codes[f] = grid.code(c);
+      out.prims[f] = static_cast<std::uint32_t>(f);
+    }
+  });
   radix_sort_pairs(out.codes, out.prims, 63);
   return out;
 }

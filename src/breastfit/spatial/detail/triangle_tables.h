@@ -25,8 +25,10 @@ void validate_triangle_mesh(const TriangleMesh& mesh, const std::string& who);
 /// kFlag* bits per face. An edge is an open-boundary edge when exactly one face uses it
 /// (whatever the orientation); edges shared by 2 or more faces are interior. When
 /// `vertex_boundary` is given it receives 1 per vertex lying on such an edge, else 0 (#V).
+/// `threads`: of the per-face loop (the result does not depend on it).
 std::vector<std::uint8_t> triangle_flags(const TriangleMesh& mesh,
-                                         std::vector<std::uint8_t>* vertex_boundary);
+                                         std::vector<std::uint8_t>* vertex_boundary,
+                                         int threads = 1);
 
 /// Axis-aligned box of every triangle (#F).
 std::vector<PrimBox> triangle_boxes(const TriangleMesh& mesh);
@@ -43,7 +45,8 @@ struct MortonSorted {
   std::vector<std::uint64_t> codes;  ///< ascending
   std::vector<std::uint32_t> prims;  ///< face of each code; ties by face index
 };
-MortonSorted triangle_morton_order(const TriangleMesh& mesh);
+/// `threads`: of the per-face loops (the result does not depend on it).
+MortonSorted triangle_morton_order(const TriangleMesh& mesh, int threads = 1);
 
 /// Row indices of P (#P by 3, finite) sorted along a 3D Morton (Z-order) curve over P's
 /// bounding box, 21 bits per axis; ties by row index.
