@@ -20,8 +20,8 @@ namespace {
 
 // Of the 24 moves per case (12 landmarks, 20 and 40 mm): the measured counts (docs/REGISTRATION.md,
 // "Checking the landmarks a person placed"), kept as a floor.
-constexpr int kMinFlaggedStanding = 8;
-constexpr int kMinFlaggedSupine = 8;
+constexpr int kMinFlaggedStanding = 14;
+constexpr int kMinFlaggedSupine = 11;
 
 const synth::SynthCase& synth_case(int seed, synth::PoseType pose) {
   static std::map<std::pair<int, synth::PoseType>, synth::SynthCase> cases;
