@@ -231,11 +231,13 @@ std::vector<Vec3> predict_given(Problem& problem, const model::PoseParams& param
 }
 
 // Checks the given landmarks against their predictions; those beyond their tolerance get their
-// weight multiplied by (tolerance / distance)², the model is stepped to where the others put it
-// (leave_out_landmarks) and the refine stage is run again: one bad click cannot drag the fit.
+// weight multiplied by (tolerance / distance)² and, with `refit`, the model is stepped to where the
+// others put it (leave_out_landmarks) and the refine stage is run again: one bad click cannot drag
+// the fit. (The workstation's warm re-fit only reports: the user is placing the landmarks.)
 PlacedCheck hold_off_misplaced(const model::RiggedModel& model, ScanTarget& scan, std::unique_ptr<Problem>& problem,
                                model::PoseParams& params, const std::vector<LandmarkTarget>& given,
-                               const FitOptions& options, FitSummary& summary, const IterationCallback& on_iteration) {
+                               const FitOptions& options, FitSummary& summary, const IterationCallback& on_iteration,
+                               bool refit = true) {
   PlacedCheck out;
   out.held_off.assign(given.size(), 1.0);
   if (given.size() < kMinLandmarksToPredict || summary.termination == Termination::Aborted ||
@@ -250,7 +252,8 @@ PlacedCheck hold_off_misplaced(const model::RiggedModel& model, ScanTarget& scan
     off.push_back(i);
     out.held_off[i] = robust_landmark_factor(d, tolerance);
   }
-  if (off.empty()) return out;
+  if (!refit) out.held_off.assign(given.size(), 1.0);
+  if (off.empty() || !refit) return out;
   params = leave_out_landmarks(*problem, params,
                                active_parameters(problem->evaluator().layout(), options.refine, options.max_blendshapes),
                                off);
@@ -359,7 +362,8 @@ FitResult refit_template(const model::RiggedModel& model, ScanTarget& scan, std:
   problem->evaluator().set_params(params);
   summary.timings.push_back({"initialization", phase.seconds()});
   summary.termination = minimize_stages(*problem, {options.refine}, params, summary, on_iteration);
-  const PlacedCheck placed = hold_off_misplaced(model, scan, problem, params, landmarks, options, summary, on_iteration);
+  const PlacedCheck placed =
+      hold_off_misplaced(model, scan, problem, params, landmarks, options, summary, on_iteration, false);
   finish_fit(model, scan, *problem, params, landmarks, options, placed, result);
   summary.seconds = timer.seconds();
   return result;
