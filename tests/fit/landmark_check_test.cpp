@@ -39,6 +39,28 @@ TEST(LandmarkCheck, FindsTheBreastTipOnTheScanNearTheFittedNipple) {
   EXPECT_FALSE(breast_tip_on_scan(scan.V, model.V, N, Vec3(0, -500, 0)));
 }
 
+TEST(LandmarkCheck, ExchangedLabelsAreThePairsThatBelongAtEachOther) {
+  auto at = [](const std::string& name, const Vec3& p) { return LandmarkTarget{name, 0, p, landmark_weight(name)}; };
+  // Where the anatomy and the other landmarks put them.
+  const std::vector<Vec3> predicted = {Vec3(0, 0, 0), Vec3(0, 0, -120), Vec3(90, 0, -140), Vec3(90, 0, -200)};
+  // nipple_L and lowest_breast_L clicked with each other's label; the others as predicted.
+  const std::vector<LandmarkTarget> given = {at("sternal_notch", Vec3(1, 0, 0)), at("xiphoid", Vec3(0, 2, -120)),
+                                             at("nipple_L", Vec3(90, 0, -201)), at("lowest_breast_L", Vec3(91, 0, -140))};
+  const auto pairs = exchanged_labels(given, predicted, 15.0);
+  ASSERT_EQ(pairs.size(), 1u);
+  EXPECT_EQ(pairs[0], std::make_pair(size_t{2}, size_t{3}));
+  // One landmark off alone is not an exchange.
+  auto one_off = given;
+  one_off[3].position = Vec3(91, 0, -200);
+  one_off[2].position = Vec3(140, 0, -140);
+  EXPECT_TRUE(exchanged_labels(one_off, predicted, 15.0).empty());
+  // The landmarks as predicted: nothing.
+  auto fine = given;
+  fine[2].position = predicted[2];
+  fine[3].position = predicted[3];
+  EXPECT_TRUE(exchanged_labels(fine, predicted, 15.0).empty());
+}
+
 // The toy model's "breasts" are small bumps that random poses can turn into dents: no tip to
 // check its nipples against, so these tests switch the breast-tip check off.
 FitOptions toy_options() {

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "breastfit/synth/synth_case.h"
+#include "support/default_template.h"
 #include "support/test_shapes.h"
 
 namespace breastfit::pipeline {
@@ -58,6 +60,34 @@ TEST(LandmarkFrameCheck, LandmarksOfAnotherScanAreNotMisdiagnosed) {
   auto two = s.mapped([](const Vec3& p) { return Vec3(-p.x(), -p.y(), p.z()); });
   two.resize(2);
   EXPECT_FALSE(diagnose_landmark_frame(two, s.scan));
+}
+
+// A synthetic torso scan and its 12 landmarks: each usual mistake named, the landmarks as given
+// left alone.
+TEST(LandmarkFrameCheck, NamesEachMistakeOnASyntheticTorso) {
+  synth::SynthOptions o;
+  o.seed = 22;
+  o.pose = synth::PoseType::Supine;
+  const synth::SynthCase c = synth::make_case(*test::default_template(), o);
+  const fit::ScanTarget scan(c.scan, 300);
+  std::vector<std::pair<std::string, Vec3>> given;
+  for (const auto& p : c.input_landmarks) given.emplace_back(p.name, p.position);
+  EXPECT_FALSE(diagnose_landmark_frame(given, scan));
+  const auto map = [&](auto f) {
+    auto out = given;
+    for (auto& [n, p] : out) p = f(p);
+    return out;
+  };
+  const auto ras = diagnose_landmark_frame(map([](const Vec3& p) { return Vec3(-p.x(), -p.y(), p.z()); }), scan);
+  ASSERT_TRUE(ras);
+  EXPECT_NE(ras->mistake.find("RAS read as LPS"), std::string::npos) << ras->mistake;
+  EXPECT_LT(ras->corrected_median_mm, 5.0);
+  const auto metres = diagnose_landmark_frame(map([](const Vec3& p) { return Vec3(p / 1000.0); }), scan);
+  ASSERT_TRUE(metres);
+  EXPECT_NE(metres->mistake.find("in metres but read as millimetres"), std::string::npos) << metres->mistake;
+  const auto both = diagnose_landmark_frame(map([](const Vec3& p) { return Vec3(-p.x() / 1000.0, -p.y() / 1000.0, p.z() / 1000.0); }), scan);
+  ASSERT_TRUE(both);
+  EXPECT_NE(both->mistake.find("negated and in metres"), std::string::npos) << both->mistake;
 }
 
 }  // namespace

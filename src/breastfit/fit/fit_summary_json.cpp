@@ -35,6 +35,10 @@ nlohmann::json landmark_checks_json(const std::vector<LandmarkCheck>& checks) {
       out[c.name]["breast_tip_distance_mm"] = c.anatomy_distance_mm;
       out[c.name]["breast_tip_tolerance_mm"] = c.anatomy_tolerance_mm;
     }
+    if (c.predicted_distance_mm >= 0) {
+      out[c.name]["predicted_distance_mm"] = c.predicted_distance_mm;
+      out[c.name]["predicted_tolerance_mm"] = c.predicted_tolerance_mm;
+    }
   }
   return out;
 }

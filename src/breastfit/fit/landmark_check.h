@@ -10,8 +10,15 @@
 /// the mid-axillary points — a landmark is flagged, and during the stages with
 /// StageOptions::robust_landmarks its weight is multiplied by (tolerance / distance)², held fixed
 /// while each step is solved (IRLS): its pull on the fit fades instead of growing with the error.
+///
+/// The fit follows a wrong click (the template slides), so each landmark is also compared with its
+/// *prediction* — where the scan's anatomy and the other landmarks put it (landmark_prediction.h)
+/// — with a per-landmark tolerance (placed_landmark_tolerance_mm); one beyond it is flagged, its
+/// weight multiplied by (tolerance / distance)² and the refine stage run again without its pull.
+#include <cstddef>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "breastfit/core/types.h"
@@ -21,6 +28,14 @@ namespace breastfit::fit {
 
 /// The check tolerance of a landmark (mm): `landmark_check_mm`, ×2 for the mid-axillary points.
 double landmark_check_tolerance_mm(const std::string& name, double landmark_check_mm);
+
+/// Landmarks needed before each given landmark is checked against its prediction
+/// (landmark_prediction.h): with fewer, the others say too little about where it belongs.
+inline constexpr size_t kMinLandmarksToPredict = 3;
+
+/// The tolerance of a landmark's prediction check (mm): given landmark ↔ where the scan's
+/// anatomy and the other landmarks put it.
+double placed_landmark_tolerance_mm(const std::string& name, double landmark_check_mm);
 
 /// IRLS factor of a landmark at check distance `distance_mm`: 1 within the tolerance,
 /// (tolerance / distance)² beyond.
@@ -36,8 +51,19 @@ struct LandmarkCheck {
   /// < 0 when not checked.
   double anatomy_distance_mm = -1;
   double anatomy_tolerance_mm = 0;
+  /// Given landmark ↔ where the scan's anatomy and the other landmarks put it
+  /// (landmark_prediction.h); < 0 when not checked.
+  double predicted_distance_mm = -1;
+  double predicted_tolerance_mm = 0;
   bool flagged = false;     ///< beyond a tolerance: check this landmark
 };
+
+/// Pairs of given landmarks whose labels look exchanged: both beyond their prediction check, and
+/// each within its tolerance of where the other one belongs. `predicted[i]` is the prediction of
+/// `given[i]` (landmark_prediction.h). Indices into `given`, the smaller first.
+std::vector<std::pair<size_t, size_t>> exchanged_labels(const std::vector<LandmarkTarget>& given,
+                                                        const std::vector<Vec3>& predicted,
+                                                        double landmark_check_mm);
 
 /// The breast's tip on the scan near a fitted nipple: among the scan's vertices within
 /// `search_radius_mm` of the fitted model's nipple, the one farthest along the model's mean

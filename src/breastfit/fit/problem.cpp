@@ -73,6 +73,17 @@ double Problem::evaluate_term(std::string_view name, NormalEquations* eq) const 
   return 0.0;  // disabled
 }
 
+double Problem::evaluate_landmark(size_t i, NormalEquations* eq) const {
+  std::vector<LandmarkTarget> one = landmarks_;  // the others at weight 0: the terms keep their per-landmark state
+  for (size_t k = 0; k < one.size(); ++k)
+    if (k != i) one[k].weight = 0.0;
+  const TermContext ctx{ev_, pairs_, reverse_pairs_, one, options_, robust_landmarks_};
+  double cost = 0.0;
+  for (const auto& t : terms_)
+    if (t.name == "landmarks" || t.name == "sliding_landmarks") cost += t.term->evaluate(ctx, t.weight, eq);
+  return cost;
+}
+
 void Problem::orient_scan_normals(double max_dist) {
   const Points N = mesh::vertex_normals(ev_.vertices(), model_.rest.F);
   const Points& V = ev_.vertices();

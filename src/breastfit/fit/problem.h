@@ -40,6 +40,11 @@ class Problem {
   /// The energy of one term (1/λ included) at the current parameters; with `eq`, its rows only.
   double evaluate_term(std::string_view name, NormalEquations* eq) const;
 
+  /// The landmark terms' energy of landmark `i` alone (of the landmarks given to the problem, in
+  /// their order) at the current parameters; with `eq`, its rows only.
+  double evaluate_landmark(size_t i, NormalEquations* eq) const;
+  const std::vector<LandmarkTarget>& landmarks() const { return landmarks_; }
+
   /// Flips the scan's normal sign when most of them disagree with the posed template's normals.
   void orient_scan_normals(double max_distance_mm);
 

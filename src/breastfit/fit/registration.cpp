@@ -11,6 +11,7 @@
 #include "breastfit/fit/breast_fold.h"
 #include "breastfit/fit/initialization.h"
 #include "breastfit/fit/jugular_notch.h"
+#include "breastfit/fit/landmark_prediction.h"
 #include "breastfit/fit/orientation_search.h"
 #include "breastfit/fit/stage_minimizer.h"
 #include "breastfit/fit/problem.h"
@@ -20,6 +21,13 @@
 
 namespace breastfit::fit {
 namespace {
+
+// The given landmarks against their predictions: where the anatomy and the other landmarks put
+// them (empty when not checked), and the factor each one's weight was multiplied by.
+struct PlacedCheck {
+  std::vector<Vec3> predicted;
+  std::vector<double> held_off;
+};
 
 std::string fmt(double v, int digits = 1) {
   char buf[64];
@@ -73,7 +81,8 @@ Verdict judge(const FitOptions& options, const Problem& problem, Termination ter
 // the fit's last stage used, on the parametric model V_model.
 std::vector<LandmarkCheck> check_landmarks(const model::RiggedModel& model, const Points& V, const Points& V_model,
                                            const model::PoseParams& params, const ScanTarget& scan,
-                                           const std::vector<LandmarkTarget>& landmarks, const FitOptions& options) {
+                                           const std::vector<LandmarkTarget>& landmarks, const FitOptions& options,
+                                           const std::vector<Vec3>& predicted, const std::vector<double>& held_off) {
   std::vector<LandmarkCheck> out;
   const Points N = mesh::vertex_normals(V, model.rest.F);
   for (const auto& t : landmarks) {
@@ -83,10 +92,18 @@ std::vector<LandmarkCheck> check_landmarks(const model::RiggedModel& model, cons
     c.tolerance_mm = landmark_check_tolerance_mm(t.name, options.landmark_check_mm);
     const double fitted = (model_landmark_position(model, t.model_landmark, V_model, params) - t.position).norm();
     c.factor = options.refine.robust_landmarks ? robust_landmark_factor(fitted, c.tolerance_mm) : 1.0;
+    if (out.size() < held_off.size()) c.factor *= held_off[out.size()];
     c.flagged = c.distance_mm > c.tolerance_mm;
+    if (out.size() < predicted.size()) {
+      c.predicted_distance_mm = (predicted[out.size()] - t.position).norm();
+      c.predicted_tolerance_mm = placed_landmark_tolerance_mm(t.name, options.landmark_check_mm);
+      c.flagged = c.flagged || c.predicted_distance_mm > c.predicted_tolerance_mm;
+    }
     if (t.name == "nipple_R" || t.name == "nipple_L") {
-      const Vec3 fitted_nipple = model_landmark_position(model, t.model_landmark, V, params);
-      if (const auto tip = breast_tip_on_scan(scan.mesh().V, V, N, fitted_nipple)) {
+      // Around where the other landmarks put the nipple (the fitted one follows a wrong click).
+      const Vec3 nipple = out.size() < predicted.size() ? predicted[out.size()]
+                                                        : model_landmark_position(model, t.model_landmark, V, params);
+      if (const auto tip = breast_tip_on_scan(scan.mesh().V, V, N, nipple)) {
         c.anatomy_distance_mm = (*tip - t.position).norm();
         c.anatomy_tolerance_mm = options.nipple_tip_check_mm;
         c.flagged = c.flagged || c.anatomy_distance_mm > c.anatomy_tolerance_mm;
@@ -220,7 +237,58 @@ std::string termination_message(const FitSummary& s) {
 }
 
 void finish_fit(const model::RiggedModel& model, ScanTarget& scan, Problem& problem, const model::PoseParams& params,
-                const std::vector<LandmarkTarget>& landmarks, const FitOptions& options, FitResult& result);
+                const std::vector<LandmarkTarget>& landmarks, const FitOptions& options, const PlacedCheck& placed,
+                FitResult& result);
+
+// Where the scan's anatomy and the other landmarks put each of the first `given` landmarks of
+// `problem` (landmark_prediction.h), at the final correspondences (the anatomical targets held
+// after them are not checked).
+std::vector<Vec3> predict_given(Problem& problem, const model::PoseParams& params, const FitOptions& options,
+                                size_t given) {
+  problem.evaluator().set_params(params);
+  problem.update_correspondences(options.correspondences.max_distance_end_mm, 1, options.uses_reverse_term());
+  problem.update_terms(options.refine.robust_landmarks);
+  std::vector<Vec3> out = predict_left_out_landmarks(
+      problem, params, active_parameters(problem.evaluator().layout(), options.refine, options.max_blendshapes));
+  out.resize(given);
+  return out;
+}
+
+// Checks the given landmarks against their predictions; those beyond their tolerance get their
+// weight multiplied by (tolerance / distance)² and, with `refit`, the model is stepped to where the
+// others put it (leave_out_landmarks) and the refine stage is run again: one bad click cannot drag
+// the fit. (The workstation's warm re-fit only reports: the user is placing the landmarks.)
+PlacedCheck hold_off_misplaced(const model::RiggedModel& model, ScanTarget& scan, std::unique_ptr<Problem>& problem,
+                               model::PoseParams& params, const std::vector<LandmarkTarget>& given,
+                               const FitOptions& options, FitSummary& summary, const IterationCallback& on_iteration,
+                               bool refit = true) {
+  PlacedCheck out;
+  out.held_off.assign(given.size(), 1.0);
+  if (given.size() < kMinLandmarksToPredict || summary.termination == Termination::Aborted ||
+      summary.termination == Termination::NumericalFailure)
+    return out;
+  out.predicted = predict_given(*problem, params, options, given.size());
+  std::vector<size_t> off;
+  for (size_t i = 0; i < given.size(); ++i) {
+    const double d = (out.predicted[i] - given[i].position).norm();
+    const double tolerance = placed_landmark_tolerance_mm(given[i].name, options.landmark_check_mm);
+    if (d <= tolerance) continue;
+    off.push_back(i);
+    out.held_off[i] = robust_landmark_factor(d, tolerance);
+  }
+  if (!refit) out.held_off.assign(given.size(), 1.0);
+  if (off.empty() || !refit) return out;
+  params = leave_out_landmarks(*problem, params,
+                               active_parameters(problem->evaluator().layout(), options.refine, options.max_blendshapes),
+                               off);
+  std::vector<LandmarkTarget> held = problem->landmarks();
+  for (size_t i : off) held[i].weight *= out.held_off[i];
+  problem = std::make_unique<Problem>(model, scan, options, held);
+  summary.termination = minimize_stages(*problem, {options.refine}, params, summary, on_iteration);
+  if (summary.termination != Termination::Aborted && summary.termination != Termination::NumericalFailure)
+    out.predicted = predict_given(*problem, params, options, given.size());
+  return out;
+}
 
 }  // namespace
 
@@ -297,7 +365,9 @@ FitResult register_template(const model::RiggedModel& model, ScanTarget& scan, s
   } else {
     summary.termination = minimize_stages(*problem_ptr, stages, params, summary, on_iteration);
   }
-  finish_fit(model, scan, *problem_ptr, params, landmarks, options, result);
+  const PlacedCheck placed =
+      hold_off_misplaced(model, scan, problem_ptr, params, landmarks, options, summary, on_iteration);
+  finish_fit(model, scan, *problem_ptr, params, landmarks, options, placed, result);
   summary.seconds = timer.seconds();
   return result;
 }
@@ -315,11 +385,13 @@ FitResult refit_template(const model::RiggedModel& model, ScanTarget& scan, std:
   summary.initialization = "warm start";
   summary.landmarks_used = static_cast<int>(landmarks.size());
   model::PoseParams params = start;
-  Problem problem(model, scan, options, landmarks);
-  problem.evaluator().set_params(params);
+  auto problem = std::make_unique<Problem>(model, scan, options, landmarks);
+  problem->evaluator().set_params(params);
   summary.timings.push_back({"initialization", phase.seconds()});
-  summary.termination = minimize_stages(problem, {options.refine}, params, summary, on_iteration);
-  finish_fit(model, scan, problem, params, landmarks, options, result);
+  summary.termination = minimize_stages(*problem, {options.refine}, params, summary, on_iteration);
+  const PlacedCheck placed =
+      hold_off_misplaced(model, scan, problem, params, landmarks, options, summary, on_iteration, false);
+  finish_fit(model, scan, *problem, params, landmarks, options, placed, result);
   summary.seconds = timer.seconds();
   return result;
 }
@@ -329,7 +401,8 @@ namespace {
 // The end of every fit: the final state at the final threshold, the verdict, the surface detail
 // and the landmark checks.
 void finish_fit(const model::RiggedModel& model, ScanTarget& scan, Problem& problem, const model::PoseParams& params,
-                const std::vector<LandmarkTarget>& landmarks, const FitOptions& options, FitResult& result) {
+                const std::vector<LandmarkTarget>& landmarks, const FitOptions& options, const PlacedCheck& placed,
+                FitResult& result) {
   FitSummary& summary = result.summary;
   Timer phase;
   problem.evaluator().set_params(params);
@@ -361,17 +434,26 @@ void finish_fit(const model::RiggedModel& model, ScanTarget& scan, Problem& prob
   }
   // Checked on the final surface (detail included): what the user sees.
   summary.landmark_checks =
-      check_landmarks(model, result.vertices, result.model_vertices, params, scan, landmarks, options);
+      check_landmarks(model, result.vertices, result.model_vertices, params, scan, landmarks, options,
+                      placed.predicted, placed.held_off);
   for (const auto& c : summary.landmark_checks) {
     if (!c.flagged) continue;
-    const bool by_model = c.distance_mm > c.tolerance_mm;
-    summary.warnings.push_back(
-        "landmark '" + c.name + "' is " +
-        (by_model ? fmt(c.distance_mm) + " mm from the fitted model's landmark (tolerance " + fmt(c.tolerance_mm, 0)
-                  : fmt(c.anatomy_distance_mm) + " mm from the breast's tip on the scan (tolerance " +
-                        fmt(c.anatomy_tolerance_mm, 0)) +
-        " mm): check it" + (c.factor < 1 ? "; it was down-weighted in the fit (weight x" + fmt(c.factor, 2) + ")" : ""));
+    std::string why;
+    if (c.predicted_distance_mm > c.predicted_tolerance_mm)
+      why = fmt(c.predicted_distance_mm) + " mm from where the scan's anatomy and the other landmarks put it (tolerance " +
+            fmt(c.predicted_tolerance_mm, 0);
+    else if (c.distance_mm > c.tolerance_mm)
+      why = fmt(c.distance_mm) + " mm from the fitted model's landmark (tolerance " + fmt(c.tolerance_mm, 0);
+    else
+      why = fmt(c.anatomy_distance_mm) + " mm from the breast's tip on the scan (tolerance " +
+            fmt(c.anatomy_tolerance_mm, 0);
+    summary.warnings.push_back("landmark '" + c.name + "' is " + why + " mm): check it" +
+                               (c.factor < 1 ? "; it was down-weighted in the fit (weight x" + fmt(c.factor, 2) + ")"
+                                             : ""));
   }
+  for (const auto& [a, b] : exchanged_labels(landmarks, placed.predicted, options.landmark_check_mm))
+    summary.warnings.push_back("the labels of landmarks '" + landmarks[a].name + "' and '" + landmarks[b].name +
+                               "' look exchanged: each lies where the other one belongs; check the labels");
   result.landmarks = landmarks;
 }
 

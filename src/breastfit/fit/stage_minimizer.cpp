@@ -9,7 +9,6 @@
 #include "breastfit/fit/lm_strategy.h"
 
 namespace breastfit::fit {
-namespace {
 
 std::vector<int> active_parameters(const model::ParamLayout& layout, const StageOptions& stage, int max_shapes) {
   std::vector<int> active;
@@ -24,6 +23,8 @@ std::vector<int> active_parameters(const model::ParamLayout& layout, const Stage
   }
   return active;
 }
+
+namespace {
 
 // The convergence tests of one finished iteration (only asked once the stage's threshold is final).
 std::optional<Termination> convergence(const SolverOptions& o, const IterationRecord& rec, bool fresh_hessian) {

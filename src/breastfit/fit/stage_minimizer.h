@@ -13,6 +13,10 @@
 
 namespace breastfit::fit {
 
+/// The parameters `stage` moves (indices into the full vector of `layout`): the similarity, the
+/// bones and the first `max_shapes` blendshapes (< 0: all), as the stage says.
+std::vector<int> active_parameters(const model::ParamLayout& layout, const StageOptions& stage, int max_shapes);
+
 /// Runs `stages` in order from `params` (updated in place). Appends stage summaries, iteration
 /// records and per-stage times ("stage:<name>") to `summary`. Bone scales and blendshape weights
 /// stay within their bounds. Stops early (termination Aborted) when `on_iteration` returns Abort.

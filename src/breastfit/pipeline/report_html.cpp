@@ -216,7 +216,9 @@ void landmarks_table(std::string& h, const RegisterResult& r) {
   h += "<h2>Landmarks</h2>\n<p class=\"note\">Distance between each fitted landmark and the landmark given on the "
        "scan. A landmark farther than its tolerance (15 mm; 30 mm for the mid-axillary points, which mark a line "
        "on skin that slides with the arm, weighted 0.1 in the fit: errors of 10&ndash;20 mm along the line are "
-       "usual) is marked: check its placement on the scan. The fit gives such a landmark less weight.</p>\n<table>\n"
+       "usual) is marked: check its placement on the scan. The fit gives such a landmark less weight. Each "
+       "landmark is also compared with where the scan's anatomy and the other landmarks put it (a fit without "
+       "it): one farther than its tolerance there is marked and down-weighted too.</p>\n<table>\n"
        "<tr><th>landmark</th><th>error (mm)</th><th>tolerance (mm)</th><th></th></tr>\n";
   for (size_t i = 0; i < r.landmarks.names.size(); ++i) {
     const double d = r.landmarks.distances_mm[i];
@@ -226,8 +228,12 @@ void landmarks_table(std::string& h, const RegisterResult& r) {
     h += "<tr><td>" + html_escape(r.landmarks.names[i]) + "</td><td class=\"n\">" + num(d, 1) + "</td><td class=\"n\">" +
          (check ? num(check->tolerance_mm, 0) : std::string("&mdash;")) + "</td><td>" +
          (check && check->flagged
-              ? "<span class=\"badge check\">check</span> <span class=\"note\">beyond " +
-                    num(check->tolerance_mm, 0) + " mm</span>"
+              ? "<span class=\"badge check\">check</span> <span class=\"note\">" +
+                    (check->predicted_distance_mm > check->predicted_tolerance_mm
+                         ? num(check->predicted_distance_mm, 0) +
+                               " mm from where the scan's anatomy and the other landmarks put it"
+                         : "beyond " + num(check->tolerance_mm, 0) + " mm") +
+                    (check->factor < 1 ? "; down-weighted" : "") + "</span>"
               : "") +
          "</td></tr>\n";
   }

@@ -1,0 +1,73 @@
+#include "breastfit/fit/landmark_prediction.h"
+
+#include <Eigen/Cholesky>
+
+#include "breastfit/fit/sliding_landmarks.h"
+
+namespace breastfit::fit {
+namespace {
+
+// H and g of the whole energy, and of the landmarks left out, at the evaluator's parameters.
+struct Equations {
+  Eigen::MatrixXd H;
+  Eigen::VectorXd g;
+};
+
+Equations assemble(const Problem& problem, const std::vector<int>& active, const std::vector<size_t>* only) {
+  NormalEquations eq(problem.evaluator().layout().num_params());
+  eq.set_active(active);
+  if (only)
+    for (size_t i : *only) problem.evaluate_landmark(i, &eq);
+  else
+    problem.evaluate(&eq);
+  eq.finalize();
+  return {eq.H(), eq.g()};
+}
+
+// The parameters after the Newton step of the energy `all` minus `removed`. A tiny relative
+// damping keeps directions the energy does not see (if any) where they are.
+model::PoseParams newton_step(const Problem& problem, const model::PoseParams& params, const std::vector<int>& active,
+                              const Equations& all, const Equations& removed) {
+  Eigen::MatrixXd A = all.H - removed.H;
+  A.diagonal() += 1e-6 * all.H.diagonal().cwiseAbs() + Eigen::VectorXd::Constant(A.rows(), 1e-9);
+  const Eigen::VectorXd x = A.ldlt().solve(-(all.g - removed.g));
+  const auto& layout = problem.evaluator().layout();
+  Eigen::VectorXd delta = Eigen::VectorXd::Zero(layout.num_params());
+  if (x.allFinite())
+    for (size_t r = 0; r < active.size(); ++r) delta[active[r]] = x[r];
+  model::PoseParams out = params;
+  layout.apply_increment(problem.evaluator().model(), delta, out);
+  return out;
+}
+
+}  // namespace
+
+model::PoseParams leave_out_landmarks(Problem& problem, const model::PoseParams& params, const std::vector<int>& active,
+                                      const std::vector<size_t>& left_out) {
+  problem.evaluator().set_params(params);
+  const Equations all = assemble(problem, active, nullptr);
+  const Equations removed = assemble(problem, active, &left_out);
+  return newton_step(problem, params, active, all, removed);
+}
+
+std::vector<Vec3> predict_left_out_landmarks(Problem& problem, const model::PoseParams& params,
+                                             const std::vector<int>& active) {
+  auto& ev = problem.evaluator();
+  ev.set_params(params);
+  const Equations all = assemble(problem, active, nullptr);
+  const auto& landmarks = problem.landmarks();
+  std::vector<model::PoseParams> steps;
+  for (size_t i = 0; i < landmarks.size(); ++i) {
+    const std::vector<size_t> one{i};
+    steps.push_back(newton_step(problem, params, active, all, assemble(problem, active, &one)));
+  }
+  std::vector<Vec3> out;
+  for (size_t i = 0; i < landmarks.size(); ++i) {
+    ev.set_params(steps[i]);
+    out.push_back(model_landmark_position(ev.model(), landmarks[i].model_landmark, ev.vertices(), steps[i]));
+  }
+  ev.set_params(params);
+  return out;
+}
+
+}  // namespace breastfit::fit
