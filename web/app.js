@@ -444,8 +444,14 @@ function buildModel() {
   const distance = $('show-distance').checked;
   groups.scan.visible = !distance;  // the coloured model in place of the scan (no z-fighting)
   if (distance) {
+    // The report's scale: 0 to the 95th percentile rounded up (server's distance_scale_mm); grey
+    // where the scan does not cover the model (null: holes, beyond the scanned area).
+    const top = r.fitted.distance_scale_mm > 0 ? r.fitted.distance_scale_mm : 10;
     const c = new Float32Array(r.fitted.distances_mm.length * 3);
-    r.fitted.distances_mm.forEach((d, i) => c.set(rampColour(d / 10), 3 * i));
+    r.fitted.distances_mm.forEach((d, i) => c.set(d === null ? [0.62, 0.62, 0.62] : rampColour(d / top), 3 * i));
+    const fmt = (x) => String(Math.round(x * 100) / 100);
+    const ticks = $('colorbar').querySelectorAll('.ticks span');
+    ticks[0].textContent = '0'; ticks[1].textContent = fmt(top / 2); ticks[2].textContent = fmt(top) + ' mm';
     g.setAttribute('color', new THREE.BufferAttribute(c, 3));
   }
   const opacity = distance ? 1 : Number($('model-opacity').value);
@@ -501,9 +507,13 @@ function showResult(r) {
     buildModel(); buildDrawings();
     return;
   }
-  v.className = r.usable ? 'usable' : 'not-usable';
-  v.textContent = (r.usable ? '✓ ' : '✗ ') + r.verdict.charAt(0).toUpperCase() + r.verdict.slice(1) + '.' +
-    (r.usable ? ' Check the drawings, then Export (4).' : ' Check the landmarks and Fit again.');
+  const implausible = r.usable && r.status === 'implausible';
+  v.className = implausible ? 'implausible' : r.usable ? 'usable' : 'not-usable';
+  v.textContent = implausible
+    ? '⚠ Implausible fit: the shape is not that of an adult torso or does not follow the scan (see the warnings). ' +
+      'Check the scan, its units and the landmarks before using the drawings.'
+    : (r.usable ? '✓ ' : '✗ ') + r.verdict.charAt(0).toUpperCase() + r.verdict.slice(1) + '.' +
+      (r.usable ? ' Check the drawings, then Export (4).' : ' Check the landmarks and Fit again.');
   $('warnings').innerHTML = '';
   for (const w of r.warnings) {
     const li = document.createElement('li');

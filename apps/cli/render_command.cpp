@@ -49,6 +49,7 @@ struct RenderArgs {
   bool wireframe = false;
   bool no_labels = false;
   bool no_hidden = false;
+  bool force = false;
 };
 
 bool ends_with_png(const std::string& s) {
@@ -273,6 +274,8 @@ void run_render(const RenderArgs& a) {
   opt.show_hidden = !a.no_hidden;
   std::vector<fs::path> paths;  // written as one set: all views or none (io/output_set.h)
   for (render::View v : views) paths.push_back(output_path(a.out, v, views.size() == 1));
+  for (const fs::path& p : paths)
+    check_output_file(p.string(), {a.mesh, a.template_file, a.landmarks, a.placed, a.drawings}, a.force);
   io::OutputSet set = io::loose_file_set(paths);
   for (size_t k = 0; k < views.size(); ++k) {
     opt.view = views[k];
@@ -319,6 +322,7 @@ void register_render(CLI::App& app, int& exit_code) {
   sub->add_flag("--wireframe", args->wireframe, "Overlay the mesh edges");
   sub->add_flag("--no-labels", args->no_labels, "Do not draw landmark names");
   sub->add_flag("--no-hidden", args->no_hidden, "Omit hidden landmarks and curve parts (default: dimmed)");
+  sub->add_flag("--force", args->force, "replace existing output images");
   // Outcomes are exceptions (mapped by main.cpp); exit_code stays kExitOk on success.
   (void)exit_code;
   sub->callback([args, tpl] {

@@ -260,6 +260,20 @@ TEST(RenderCommand, MeshChoosesOneSkinnedMeshOfATemplate) {
   EXPECT_NE(out.find("no skinned mesh named 'Third'"), std::string::npos) << out;
 }
 
+TEST(RenderCommand, RefusesToReplaceAnImageWithoutForce) {
+  if (test::cli_path().empty()) GTEST_SKIP() << "CLI not built";
+  const fs::path dir = test::temp_dir();
+  io::write_mesh(dir / "torso.ply", ellipsoid());
+  write_text(dir / "shot.png", "previous");
+  std::string out;
+  const std::string cmd = "render '" + (dir / "torso.ply").string() + "' --size 64 --out '" + (dir / "shot.png").string() + "'";
+  EXPECT_EQ(test::run_cli(cmd, &out), 4) << out;
+  EXPECT_NE(out.find("already exists (use --force to replace it)"), std::string::npos) << out;
+  EXPECT_EQ(test::file_bytes(dir / "shot.png"), "previous");
+  ASSERT_EQ(test::run_cli(cmd + " --force", &out), 0) << out;
+  EXPECT_EQ(render::read_png(dir / "shot.png").width(), 64);
+}
+
 TEST(RenderCommand, AllViewsAreWrittenAsOneSetOrNotAtAll) {
   if (test::cli_path().empty()) GTEST_SKIP() << "CLI not built";
   const fs::path dir = test::temp_dir();
@@ -268,7 +282,7 @@ TEST(RenderCommand, AllViewsAreWrittenAsOneSetOrNotAtAll) {
   fs::create_directories(dir / "shot_side.png");  // the second view cannot be written: a failure in the middle
   std::string out;
   const std::string cmd = "render '" + (dir / "torso.ply").string() + "' --view all --size 64 --out '" +
-                          (dir / "shot").string() + "'";
+                          (dir / "shot").string() + "' --force";
   EXPECT_EQ(test::run_cli(cmd, &out), 4) << out;
   EXPECT_NE(out.find("shot_side.png"), std::string::npos) << out;
   EXPECT_EQ(test::file_bytes(dir / "shot_front.png"), "previous front");  // not a mixed set

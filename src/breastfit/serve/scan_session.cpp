@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <limits>
 
 #include "breastfit/core/errors.h"
 #include "breastfit/core/timer.h"
@@ -77,10 +78,18 @@ std::shared_ptr<const FitOutcome> ScanSession::run_fit(const LandmarkSet& landma
   {
     std::lock_guard<std::mutex> use(target_mutex_);
     out->result = pipeline::register_prepared(req, target_, progress());
-    const fit::ScanTarget& scan = *target_.target;
-    out->distances_mm.reserve(out->result.fit.vertices.rows());
-    for (Eigen::Index i = 0; i < out->result.fit.vertices.rows(); ++i)
-      out->distances_mm.push_back(std::sqrt(scan.closest(out->result.fit.vertices.row(i).transpose()).sq_dist));
+    const auto n = static_cast<size_t>(out->result.fit.vertices.rows());
+    const metrics::SurfaceCoverage& cov = out->result.coverage;
+    if (cov.distance_mm.size() == n && cov.covered.size() == n) {  // as the report's figure: uncovered NaN
+      out->distances_mm.reserve(n);
+      for (size_t i = 0; i < n; ++i)
+        out->distances_mm.push_back(cov.covered[i] ? cov.distance_mm[i] : std::numeric_limits<double>::quiet_NaN());
+    } else {  // a fit that is not usable has no coverage
+      const fit::ScanTarget& scan = *target_.target;
+      out->distances_mm.reserve(n);
+      for (Eigen::Index i = 0; i < out->result.fit.vertices.rows(); ++i)
+        out->distances_mm.push_back(std::sqrt(scan.closest(out->result.fit.vertices.row(i).transpose()).sq_dist));
+    }
   }
   out->server_ms = 1000 * timer.seconds();
   out->server_cpu_ms = thread_cpu_ms() - cpu_start;

@@ -30,7 +30,9 @@ namespace breastfit::serve {
 /// A finished fit as the page sees it.
 struct FitOutcome {
   pipeline::RegisterResult result;
-  std::vector<double> distances_mm;  ///< per fitted vertex: distance to the scan
+  /// per fitted vertex: distance to the scan; NaN where the scan does not cover the model
+  /// (metrics/surface_coverage.h), as the report's distance figure
+  std::vector<double> distances_mm;
   double server_ms = 0;              ///< the fit request's wall time in the server (fit, transfer, measurements)
   /// The same work's CPU time on its (single) thread: what server_ms is on an idle machine, and
   /// independent of other processes' load.

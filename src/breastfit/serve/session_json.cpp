@@ -106,10 +106,13 @@ json to_json(const FitOutcome& o, const model::RiggedModel& model) {
   j["server_ms"] = o.server_ms;
   j["server_cpu_ms"] = o.server_cpu_ms;
   j["usable"] = r.usable();
+  j["status"] = r.status();  // "ok", "implausible" or "not_usable" (report.json's)
   j["verdict"] = r.fit.summary.verdict.reason;
   j["message"] = r.fit.summary.message;
   j["warnings"] = r.warnings;
-  j["fitted"] = {{"vertices", flat(r.fit.vertices)}, {"faces", json::array()}, {"distances_mm", o.distances_mm}};
+  j["fitted"] = {{"vertices", flat(r.fit.vertices)}, {"faces", json::array()}, {"distances_mm", o.distances_mm},
+                  {"distance_scale_mm", pipeline::distance_scale_mm(Eigen::Map<const Eigen::VectorXd>(
+                                            o.distances_mm.data(), static_cast<Eigen::Index>(o.distances_mm.size())))}};
   json& faces = j["fitted"]["faces"];
   for (Eigen::Index i = 0; i < model.rest.F.rows(); ++i)
     for (int k = 0; k < 3; ++k) faces.push_back(model.rest.F(i, k));
