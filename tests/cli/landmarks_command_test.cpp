@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "breastfit/core/types.h"
+#include "support/read_json.h"
 #include "support/test_paths.h"
 
 namespace breastfit {
@@ -19,10 +20,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-nlohmann::json read_json(const fs::path& p) {
-  std::ifstream f(p);
-  return nlohmann::json::parse(f);
-}
+using test::read_json;
 
 // A synthetic case in `root`, rotated up to `rotation_deg` about a random axis, up to 1 m away.
 fs::path turned_case(const fs::path& root, int seed, const std::string& pose, const std::string& units,

@@ -18,6 +18,7 @@
 #include "breastfit/mesh/subdivision.h"
 #include "breastfit/mesh/units.h"
 #include "breastfit/model/gltf_io.h"
+#include "support/read_json.h"
 #include "support/test_paths.h"
 #include "support/test_shapes.h"
 #include "support/toy_model.h"
@@ -27,10 +28,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-nlohmann::json read_json(const fs::path& p) {
-  std::ifstream f(p);
-  return nlohmann::json::parse(f);
-}
+using test::read_json;
 
 std::string read_text(const fs::path& p) {
   std::ifstream f(p, std::ios::binary);

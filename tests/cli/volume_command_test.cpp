@@ -13,6 +13,7 @@
 #include "breastfit/synth/synth_case.h"
 #include "support/default_template.h"
 #include "support/grid_mesh.h"
+#include "support/read_json.h"
 #include "support/test_paths.h"
 
 namespace breastfit {
@@ -52,10 +53,7 @@ Markups cap_markups() {
   return m;
 }
 
-nlohmann::json read_json(const fs::path& p) {
-  std::ifstream f(p);
-  return nlohmann::json::parse(f);
-}
+using test::read_json;
 
 TEST(VolumeCommand, MeasuresClosedCurvesInAnyUnits) {
   if (test::cli_path().empty()) GTEST_SKIP() << "CLI not built";
