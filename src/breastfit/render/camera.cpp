@@ -18,25 +18,50 @@ Vec3 Camera::forward() const { return (target - eye).normalized(); }
 Vec3 Camera::right() const { return forward().cross(up).normalized(); }
 Vec3 Camera::true_up() const { return right().cross(forward()); }
 
-Projected Camera::project(const Vec3& p, int width, int height) const {
-  const Vec3 f = forward();
-  const Vec3 r = f.cross(up).normalized();
-  const Vec3 u = r.cross(f);
-  const Vec3 d = p - eye;
-  const double xc = d.dot(r), yc = d.dot(u), zc = d.dot(f);
-  const double aspect = static_cast<double>(width) / height;
-  double nx = 0, ny = 0;
-  if (projection == Projection::Orthographic) {
-    const double half_h = 0.5 * view_height;
-    nx = xc / (half_h * aspect);
-    ny = yc / half_h;
-  } else {
-    const double t = std::tan(0.5 * fov_y_deg * kPi / 180.0);
-    const double z = std::max(zc, near);
-    nx = xc / (z * t * aspect);
-    ny = yc / (z * t);
+namespace {
+
+/// Camera::project with the camera's axes and scales computed once.
+struct Projector {
+  Vec3 eye, f, r, u;
+  bool orthographic = true;
+  double half_h = 1, aspect = 1, t = 1, near = 0;
+  int width = 1, height = 1;
+
+  Projector(const Camera& c, int w, int h)
+      : eye(c.eye), f(c.forward()), orthographic(c.projection == Projection::Orthographic), near(c.near),
+        width(w), height(h) {
+    r = f.cross(c.up).normalized();
+    u = r.cross(f);
+    aspect = static_cast<double>(width) / height;
+    half_h = 0.5 * c.view_height;
+    t = std::tan(0.5 * c.fov_y_deg * kPi / 180.0);
   }
-  return {0.5 * (nx + 1.0) * width, 0.5 * (1.0 - ny) * height, zc};
+
+  Projected operator()(const Vec3& p) const {
+    const Vec3 d = p - eye;
+    const double xc = d.dot(r), yc = d.dot(u), zc = d.dot(f);
+    double nx = 0, ny = 0;
+    if (orthographic) {
+      nx = xc / (half_h * aspect);
+      ny = yc / half_h;
+    } else {
+      const double z = std::max(zc, near);
+      nx = xc / (z * t * aspect);
+      ny = yc / (z * t);
+    }
+    return {0.5 * (nx + 1.0) * width, 0.5 * (1.0 - ny) * height, zc};
+  }
+};
+
+}  // namespace
+
+Projected Camera::project(const Vec3& p, int width, int height) const { return Projector(*this, width, height)(p); }
+
+std::vector<Projected> Camera::project_all(const Points& points, int width, int height) const {
+  const Projector project(*this, width, height);
+  std::vector<Projected> out(static_cast<size_t>(points.rows()));
+  for (Eigen::Index i = 0; i < points.rows(); ++i) out[static_cast<size_t>(i)] = project(points.row(i).transpose());
+  return out;
 }
 
 double Camera::world_per_pixel(double depth, int height) const {

@@ -2,6 +2,8 @@
 /// \file A look-at camera (orthographic or perspective) mapping world points to pixels.
 #include <Eigen/Geometry>
 
+#include <vector>
+
 #include "breastfit/core/types.h"
 
 namespace breastfit::render {
@@ -37,6 +39,8 @@ struct Camera {
 
   /// Projects a world point into a `width` by `height` image.
   Projected project(const Vec3& p, int width, int height) const;
+  /// project() of every row of `points` (the camera's axes computed once; the same values).
+  std::vector<Projected> project_all(const Points& points, int width, int height) const;
   /// World units per pixel at a given depth (constant for orthographic).
   double world_per_pixel(double depth, int height) const;
 

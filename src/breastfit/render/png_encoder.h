@@ -10,9 +10,12 @@ namespace breastfit::render {
 /// The PNG row filters (PNG specification §9.2).
 enum class PngFilter : std::uint8_t { None = 0, Sub = 1, Up = 2, Average = 3, Paeth = 4 };
 
+/// The defaults are the fastest of the filters × levels 1–2 on the report's figures
+/// (bench/pipeline/report_figures_bench.cpp, BM_EncodeFrontPng; docs/REPORT.md "Cost"): "Up" (a
+/// row against the one above) at level 1 is ~10 % faster than "Sub" at level 2 and ~4 % smaller.
 struct PngEncodeOptions {
-  int zlib_level = 2;                 ///< 0 (store) … 9 (smallest, slowest)
-  PngFilter filter = PngFilter::Sub;  ///< applied to every row
+  int zlib_level = 1;                ///< 0 (store) … 9 (smallest, slowest)
+  PngFilter filter = PngFilter::Up;  ///< applied to every row
 };
 
 /// `width` × `height` packed RGB8 pixels (row 0 at the top) as PNG bytes: signature, IHDR

@@ -157,8 +157,7 @@ void Rasterizer::draw_mesh(const Points& V, const Triangles& F, const Points& N,
     return C.rows() ? Vec3(C(i, 0), C(i, 1), C(i, 2)) : uniform;
   };
 
-  std::vector<Projected> P(static_cast<size_t>(nv));
-  for (Eigen::Index i = 0; i < nv; ++i) P[i] = project_internal(V.row(i).transpose());
+  const std::vector<Projected> P = camera_.project_all(V, w_, h_);
 
   if (F.rows() == 0) {  // point cloud: shaded splats that write depth
     const double r = std::max(0.5, style.point_radius_px * options_.supersample);
@@ -198,46 +197,80 @@ void Rasterizer::draw_mesh(const Points& V, const Triangles& F, const Points& N,
   // once with that triangle, without shading surfaces that are drawn over later (the back of the
   // torso).
   struct Tri {
-    Vec3 ng;  // geometric normal, not normalised
+    double area = 0;  // signed area in the image, twice; negative: the triangle faces the camera
     bool front = false;
-    double area = 0;
   };
   std::vector<Tri> tris(static_cast<size_t>(F.rows()));
   std::vector<std::int32_t> winner(static_cast<size_t>(w_) * h_, -1);
   int bx0 = w_, by0 = h_, bx1 = -1, by1 = -1;  // bounding box of the pixels won by this call
   // Triangles in screen tiles of 32 × 32 pixels (row-major; stable within a tile), so that the
-  // depth and winner buffers are walked with locality whatever the mesh's triangle order.
+  // depth and winner buffers are walked with locality whatever the mesh's triangle order; the
+  // triangles facing the camera first, then the back faces (the inside of the far wall of the
+  // torso, mostly hidden behind the near one), of which those that lie behind everything drawn
+  // in their screen area are skipped without visiting their pixels (a coarse depth test).
   constexpr int kTile = 32;
   const int tiles_x = (w_ + kTile - 1) / kTile, tiles_y = (h_ + kTile - 1) / kTile;
-  std::vector<std::int32_t> tile_of(static_cast<size_t>(F.rows()));
-  std::vector<std::int32_t> tile_start(static_cast<size_t>(tiles_x) * tiles_y + 1, 0);
+  const int tiles = tiles_x * tiles_y;
+  std::vector<std::int32_t> bucket_of(static_cast<size_t>(F.rows()), -1);  // -1: nothing to draw
+  std::vector<std::int32_t> bucket_start(2 * static_cast<size_t>(tiles) + 1, 0);
   for (Eigen::Index t = 0; t < F.rows(); ++t) {
-    const Projected &p0 = P[F(t, 0)], &p1 = P[F(t, 1)], &p2 = P[F(t, 2)];
-    const double cx = (p0.x + p1.x + p2.x) / 3.0, cy = (p0.y + p1.y + p2.y) / 3.0;
-    const int tx = std::clamp(pixel_index(cx), 0, w_ - 1) / kTile, ty = std::clamp(pixel_index(cy), 0, h_ - 1) / kTile;
-    tile_of[static_cast<size_t>(t)] = ty * tiles_x + tx;
-    ++tile_start[static_cast<size_t>(ty * tiles_x + tx) + 1];
-  }
-  for (size_t k = 1; k < tile_start.size(); ++k) tile_start[k] += tile_start[k - 1];
-  std::vector<std::int32_t> order(static_cast<size_t>(F.rows()));
-  for (Eigen::Index t = 0; t < F.rows(); ++t) order[static_cast<size_t>(tile_start[tile_of[t]]++)] = static_cast<std::int32_t>(t);
-  for (const std::int32_t t : order) {
     const Index i0 = F(t, 0), i1 = F(t, 1), i2 = F(t, 2);
     const Projected &p0 = P[i0], &p1 = P[i1], &p2 = P[i2];
     if (perspective && (p0.depth <= camera_.near || p1.depth <= camera_.near || p2.depth <= camera_.near))
       continue;
-    const Vec3 v0 = V.row(i0), v1 = V.row(i1), v2 = V.row(i2);
-    const Vec3 ng = (v1 - v0).cross(v2 - v0);  // normalised in pass 2, for the winners only
-    if (!(ng.squaredNorm() > 0)) continue;
-    const Vec3 to_eye = perspective ? Vec3(camera_.eye - v0) : Vec3(-f);
+    if (!(std::isfinite(p0.depth) && std::isfinite(p1.depth) && std::isfinite(p2.depth))) continue;
+    // The image is y-down, so a triangle whose corners run counter-clockwise seen from the
+    // camera (its normal towards the camera) has a negative signed area in the image.
     const double area = edge(p0, p1, p2.x, p2.y);
     if (!(std::abs(area) > 1e-12)) continue;
-    tris[static_cast<size_t>(t)] = {ng, ng.dot(to_eye) > 0, area};
+    const bool front = area < 0;
+    tris[static_cast<size_t>(t)] = {area, front};
+    const double cx = (p0.x + p1.x + p2.x) / 3.0, cy = (p0.y + p1.y + p2.y) / 3.0;
+    const int tx = std::clamp(pixel_index(cx), 0, w_ - 1) / kTile, ty = std::clamp(pixel_index(cy), 0, h_ - 1) / kTile;
+    const int bucket = (front ? 0 : tiles) + ty * tiles_x + tx;
+    bucket_of[static_cast<size_t>(t)] = bucket;
+    ++bucket_start[static_cast<size_t>(bucket) + 1];
+  }
+  for (size_t k = 1; k < bucket_start.size(); ++k) bucket_start[k] += bucket_start[k - 1];
+  const size_t n_front = static_cast<size_t>(bucket_start[static_cast<size_t>(tiles)]);
+  std::vector<std::int32_t> order(static_cast<size_t>(bucket_start.back()));
+  for (Eigen::Index t = 0; t < F.rows(); ++t)
+    if (bucket_of[static_cast<size_t>(t)] >= 0)
+      order[static_cast<size_t>(bucket_start[static_cast<size_t>(bucket_of[t])]++)] = static_cast<std::int32_t>(t);
+  bucket_of = {};
 
+  // The farthest depth drawn in each block of kBlock × kBlock pixels (+inf where a pixel is
+  // empty), filled after the front faces: a triangle no nearer than that over all the blocks
+  // of its bounding box fails the depth test at every pixel.
+  constexpr int kBlock = 8;
+  const int blocks_x = (w_ + kBlock - 1) / kBlock, blocks_y = (h_ + kBlock - 1) / kBlock;
+  std::vector<float> block_far;
+  auto fill_block_far = [&] {
+    block_far.assign(static_cast<size_t>(blocks_x) * blocks_y, 0.0f);
+    for (int y = 0; y < h_; ++y) {
+      const float* row = &depth_[static_cast<size_t>(y) * w_];
+      float* out = &block_far[static_cast<size_t>(y / kBlock) * blocks_x];
+      for (int x = 0; x < w_; ++x) out[x / kBlock] = std::max(out[x / kBlock], row[x]);
+    }
+  };
+  auto hidden = [&](const Span& xs, const Span& ys, double nearest) {
+    for (int by = ys.lo / kBlock; by <= ys.hi / kBlock; ++by)
+      for (int bx = xs.lo / kBlock; bx <= xs.hi / kBlock; ++bx)
+        if (nearest < block_far[static_cast<size_t>(by) * blocks_x + bx]) return false;
+    return true;
+  };
+
+  for (size_t k = 0; k < order.size(); ++k) {
+    if (k == n_front) fill_block_far();
+    const std::int32_t t = order[k];
+    const Index i0 = F(t, 0), i1 = F(t, 1), i2 = F(t, 2);
+    const Projected &p0 = P[i0], &p1 = P[i1], &p2 = P[i2];
+    const double area = tris[static_cast<size_t>(t)].area;
     const Span xs = pixel_span(std::min({p0.x, p1.x, p2.x}), std::max({p0.x, p1.x, p2.x}), w_);
     const Span ys = pixel_span(std::min({p0.y, p1.y, p2.y}), std::max({p0.y, p1.y, p2.y}), h_);
     if (xs.lo > xs.hi || ys.lo > ys.hi) continue;
-    if (!(std::isfinite(p0.depth) && std::isfinite(p1.depth) && std::isfinite(p2.depth))) continue;
+    // Every depth inside the triangle (perspective-correct too) lies between its corners'.
+    if (k >= n_front && hidden(xs, ys, std::min({p0.depth, p1.depth, p2.depth}))) continue;
 
     const double w0 = perspective ? 1.0 / p0.depth : 1.0;
     const double w1 = perspective ? 1.0 / p1.depth : 1.0;
@@ -277,47 +310,96 @@ void Rasterizer::draw_mesh(const Points& V, const Triangles& F, const Points& N,
     }
   }
 
-  for (int y = by0; y <= by1; ++y) {
-    const double py = y + 0.5;
-    for (int x = bx0; x <= bx1; ++x) {
-      const size_t idx = static_cast<size_t>(y) * w_ + x;
-      const std::int32_t t = winner[idx];
-      if (t < 0) continue;
-      const Tri& tri = tris[static_cast<size_t>(t)];
-      const Index i0 = F(t, 0), i1 = F(t, 1), i2 = F(t, 2);
-      const Projected &p0 = P[i0], &p1 = P[i1], &p2 = P[i2];
-      const double px = x + 0.5;
-      const double inv_area = 1.0 / tri.area;
-      double b0 = edge(p1, p2, px, py) * inv_area;
-      double b1 = edge(p2, p0, px, py) * inv_area;
-      double b2 = edge(p0, p1, px, py) * inv_area;
-      if (perspective) {  // perspective-correct barycentrics (orthographic: they sum to 1 already)
-        b0 /= p0.depth;
-        b1 /= p1.depth;
-        b2 /= p2.depth;
-        const double sum = b0 + b1 + b2;
-        b0 /= sum;
-        b1 /= sum;
-        b2 /= sum;
-      }
-      const Vec3& ng = tri.ng;
-      Vec3 n = ng;
-      if (style.smooth) {
-        n = b0 * Vec3(vn.row(i0)) + b1 * Vec3(vn.row(i1)) + b2 * Vec3(vn.row(i2));
-        if (!(n.squaredNorm() > 0)) n = ng;
-      }
-      n.normalize();
-      if (!tri.front) n = -n;
-      // Interpolated normals may turn away at silhouettes; keep them facing the viewer.
-      const Vec3 view = perspective ? Vec3((camera_.eye - (b0 * Vec3(V.row(i0)) + b1 * Vec3(V.row(i1)) +
-                                                             b2 * Vec3(V.row(i2))))
-                                               .normalized())
-                                    : Vec3(-f);
-      if (n.dot(view) < 0) n = (n - 1.0 * n.dot(view) * view).normalized();
-      const Vec3 base = b0 * base_colour(i0) + b1 * base_colour(i1) + b2 * base_colour(i2);
-      colour_.set(x, y, scale_rgb(shade(base, n, tri.front, light, style)));
+  // The surface at the sample (x, y) on triangle t: its unit normal (facing the viewer) and base
+  // colour.
+  struct Sample {
+    Vec3 n, base;
+  };
+  auto sample_at = [&](int x, int y, std::int32_t t) -> Sample {
+    const Tri& tri = tris[static_cast<size_t>(t)];
+    const Index i0 = F(t, 0), i1 = F(t, 1), i2 = F(t, 2);
+    const Projected &p0 = P[i0], &p1 = P[i1], &p2 = P[i2];
+    const double px = x + 0.5, py = y + 0.5;
+    const double inv_area = 1.0 / tri.area;
+    double b0 = edge(p1, p2, px, py) * inv_area;
+    double b1 = edge(p2, p0, px, py) * inv_area;
+    double b2 = edge(p0, p1, px, py) * inv_area;
+    if (perspective) {  // perspective-correct barycentrics (orthographic: they sum to 1 already)
+      b0 /= p0.depth;
+      b1 /= p1.depth;
+      b2 /= p2.depth;
+      const double sum = b0 + b1 + b2;
+      b0 /= sum;
+      b1 /= sum;
+      b2 /= sum;
     }
-  }
+    Vec3 n = Vec3::Zero();
+    if (style.smooth) n = b0 * Vec3(vn.row(i0)) + b1 * Vec3(vn.row(i1)) + b2 * Vec3(vn.row(i2));
+    if (!(n.squaredNorm() > 0)) {  // flat shading, or no usable vertex normals: the face's normal
+      const Vec3 v0 = V.row(i0);
+      n = (Vec3(V.row(i1)) - v0).cross(Vec3(V.row(i2)) - v0);
+      if (!(n.squaredNorm() > 0)) n = tri.front ? Vec3(-f) : Vec3(f);  // degenerate in 3D
+    }
+    n.normalize();
+    if (!tri.front) n = -n;
+    // Interpolated normals may turn away at silhouettes; keep them facing the viewer.
+    const Vec3 view = perspective ? Vec3((camera_.eye - (b0 * Vec3(V.row(i0)) + b1 * Vec3(V.row(i1)) +
+                                                           b2 * Vec3(V.row(i2))))
+                                             .normalized())
+                                  : Vec3(-f);
+    if (n.dot(view) < 0) n = (n - 1.0 * n.dot(view) * view).normalized();
+    return {n, b0 * base_colour(i0) + b1 * base_colour(i1) + b2 * base_colour(i2)};
+  };
+  auto shade_sample = [&](int x, int y, std::int32_t t) {
+    const Sample s = sample_at(x, y, t);
+    return scale_rgb(shade(s.base, s.n, tris[static_cast<size_t>(t)].front, light, style));
+  };
+
+  // Pass 2, by output pixel (a block of ss × ss samples). A block whose samples all show this
+  // call's surface, facing the same way and within kFlatPixels output pixels of depth of each
+  // other (not across a silhouette), is lit once with its samples' mean normal and colour, which
+  // for the small variations inside one pixel is their mean shade to within a grey level; other
+  // blocks are shaded sample by sample (edges stay anti-aliased).
+  constexpr double kFlatPixels = 2.0;
+  const int ss = options_.supersample;
+  for (int y0 = by0 / ss * ss; y0 <= by1; y0 += ss)
+    for (int x0 = bx0 / ss * ss; x0 <= bx1; x0 += ss) {
+      const std::int32_t t0 = winner[static_cast<size_t>(y0) * w_ + x0];
+      bool flat = t0 >= 0 && ss > 1;
+      if (flat) {
+        const bool front = tris[static_cast<size_t>(t0)].front;
+        float lo = depth_[static_cast<size_t>(y0) * w_ + x0], hi = lo;
+        for (int dy = 0; dy < ss && flat; ++dy)
+          for (int dx = 0; dx < ss && flat; ++dx) {
+            const size_t idx = static_cast<size_t>(y0 + dy) * w_ + x0 + dx;
+            flat = winner[idx] >= 0 && tris[static_cast<size_t>(winner[idx])].front == front;
+            lo = std::min(lo, depth_[idx]);
+            hi = std::max(hi, depth_[idx]);
+          }
+        flat = flat && hi - lo <= kFlatPixels * camera_.world_per_pixel(lo, options_.height);
+      }
+      if (flat) {
+        Sample mean{Vec3::Zero(), Vec3::Zero()};
+        for (int dy = 0; dy < ss; ++dy)
+          for (int dx = 0; dx < ss; ++dx) {
+            const Sample s = sample_at(x0 + dx, y0 + dy, winner[static_cast<size_t>(y0 + dy) * w_ + x0 + dx]);
+            mean.n += s.n;
+            mean.base += s.base;
+          }
+        const double norm = mean.n.norm();
+        const Rgb c = norm > 0 ? scale_rgb(shade(mean.base / (ss * ss), mean.n / norm, tris[static_cast<size_t>(t0)].front,
+                                                 light, style))
+                               : shade_sample(x0, y0, t0);
+        for (int dy = 0; dy < ss; ++dy)
+          for (int dx = 0; dx < ss; ++dx) colour_.set(x0 + dx, y0 + dy, c);
+        continue;
+      }
+      for (int y = y0; y < y0 + ss; ++y)
+        for (int x = x0; x < x0 + ss; ++x) {
+          const std::int32_t t = winner[static_cast<size_t>(y) * w_ + x];
+          if (t >= 0) colour_.set(x, y, shade_sample(x, y, t));
+        }
+    }
 }
 
 bool Rasterizer::overlay_visible_at(int x, int y, double depth) const {
@@ -370,8 +452,7 @@ void Rasterizer::draw_polyline(const Points& P, bool closed, const LineStyle& st
   if (P.rows() == 0) return;
   next_call();
   const double radius = 0.5 * style.width_px * options_.supersample;
-  std::vector<Projected> q(static_cast<size_t>(P.rows()));
-  for (Eigen::Index i = 0; i < P.rows(); ++i) q[i] = project_internal(P.row(i).transpose());
+  const std::vector<Projected> q = camera_.project_all(P, w_, h_);
   if (q.size() == 1) {
     draw_segment(q[0], q[0], radius, style.colour, 1.0, true);
     return;
@@ -425,8 +506,7 @@ void Rasterizer::draw_wireframe(const Points& V, const Triangles& F, const Wiref
     throw InvalidInput("draw_wireframe: a triangle index is outside the vertex range");
   next_call();
   const auto edges = mesh::unique_edges(F, static_cast<Index>(V.rows()));
-  std::vector<Projected> q(static_cast<size_t>(V.rows()));
-  for (Eigen::Index i = 0; i < V.rows(); ++i) q[i] = project_internal(V.row(i).transpose());
+  const std::vector<Projected> q = camera_.project_all(V, w_, h_);
   const double radius = 0.5 * style.width_px * options_.supersample;
   for (const auto& [a, b] : edges) draw_segment(q[a], q[b], radius, style.colour, style.alpha, false);
 }
