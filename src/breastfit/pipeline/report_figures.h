@@ -32,7 +32,7 @@ struct ReportFigureOptions {
   int text_scale = 2;               ///< font scale of labels, legend and colour bar (>= 1); half on side figures
   /// Colour-map range of the distance figure, 0 … this (> 0); nullopt: distance_scale_mm.
   std::optional<double> distance_range_mm;
-  bool parallel = true;             ///< render the figures concurrently (same pixels either way)
+  bool parallel = true;             ///< render the figures concurrently, one worker per core (same pixels either way)
 
   /// \throws InvalidInput naming the field, its value and the rule it violates
   void validate() const;

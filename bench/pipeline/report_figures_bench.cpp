@@ -1,0 +1,99 @@
+// Benchmarks of report.html (docs/PERFORMANCE.md, docs/REPORT.md) on a synthetic case written to
+// a temporary directory (no external data): the six figures (sequential and concurrent), one
+// front overlay figure's rendering alone, PNG encoding of a front figure, and the HTML with its
+// base64 images.
+#include <benchmark/benchmark.h>
+
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <unistd.h>
+
+#include "breastfit/io/io.h"
+#include "breastfit/io/landmarks_io.h"
+#include "breastfit/model/template_library.h"
+#include "breastfit/pipeline/register_scan.h"
+#include "breastfit/pipeline/report_figures.h"
+#include "breastfit/pipeline/report_html.h"
+#include "breastfit/render/scene.h"
+#include "breastfit/synth/case_writer.h"
+#include "breastfit/synth/synth_case.h"
+
+namespace {
+
+using namespace breastfit;
+namespace fs = std::filesystem;
+
+struct Fixture {
+  fs::path dir = fs::temp_directory_path() / ("breastfit-report-bench-" + std::to_string(::getpid()));
+  std::shared_ptr<const model::RiggedModel> model;
+  pipeline::RegisterResult result;
+  pipeline::ReportFigures figures;
+
+  Fixture() {
+    model = std::make_shared<const model::RiggedModel>(model::load_default_template());
+    synth::SynthOptions so;
+    so.seed = 3;
+    synth::write_case(dir / "case", synth::make_case(*model, so), true);
+    pipeline::RegisterRequest request;
+    request.scan = io::read_mesh(dir / "case" / "scan.ply");
+    request.landmarks = io::read_landmarks(dir / "case" / "landmarks.mrk.json");
+    request.model = model;
+    result = pipeline::register_scan(request);
+    figures = pipeline::render_report_figures(result);
+  }
+  ~Fixture() {
+    std::error_code ec;
+    fs::remove_all(dir, ec);
+  }
+};
+
+Fixture& fixture() {
+  static Fixture f;
+  return f;
+}
+
+// Arg: 1 = figures rendered concurrently, 0 = one after the other.
+void BM_ReportFigures(benchmark::State& state) {
+  auto& f = fixture();
+  pipeline::ReportFigureOptions o;
+  o.parallel = state.range(0) != 0;
+  for (auto _ : state) benchmark::DoNotOptimize(pipeline::render_report_figures(f.result, o).figures.size());
+  state.counters["scan_triangles"] = static_cast<double>(f.result.scan.mesh_mm.num_faces());
+}
+BENCHMARK(BM_ReportFigures)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// The front overlay figure's pixels (scene built once), without PNG encoding.
+void BM_RenderFrontOverlay(benchmark::State& state) {
+  auto& f = fixture();
+  const pipeline::ReportFigureOptions o;
+  const render::Scene scene = pipeline::overlay_scene(f.result, o);
+  render::RenderOptions ro;
+  ro.width = ro.height = o.size;
+  ro.supersample = o.supersample;
+  ro.text_scale = o.text_scale;
+  ro.body_to_world = f.figures.body_to_world;
+  for (auto _ : state) benchmark::DoNotOptimize(render::render_scene(scene, ro).bytes().data());
+}
+BENCHMARK(BM_RenderFrontOverlay)->Unit(benchmark::kMillisecond);
+
+void BM_EncodeFrontPng(benchmark::State& state) {
+  auto& f = fixture();
+  const render::Image& img = f.figures.figures.front().image;
+  size_t bytes = 0;
+  for (auto _ : state) bytes = img.encode_png().size();
+  state.counters["png_kB"] = static_cast<double>(bytes) / 1000.0;
+}
+BENCHMARK(BM_EncodeFrontPng)->Unit(benchmark::kMillisecond);
+
+void BM_ReportHtml(benchmark::State& state) {
+  auto& f = fixture();
+  size_t bytes = 0;
+  for (auto _ : state) bytes = pipeline::report_html(f.result, f.model->name, f.figures).size();
+  state.counters["html_kB"] = static_cast<double>(bytes) / 1000.0;
+}
+BENCHMARK(BM_ReportHtml)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();
