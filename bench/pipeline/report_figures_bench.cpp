@@ -1,9 +1,10 @@
 // Benchmarks of report.html (docs/PERFORMANCE.md, docs/REPORT.md) on a synthetic case written to
 // a temporary directory (no external data): the six figures (sequential and concurrent), one
-// front overlay figure's rendering alone, PNG encoding of a front figure, and the HTML with its
+// overlay figure's rendering alone (front or side), PNG encoding of a front figure, and the HTML with its
 // base64 images.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -63,19 +64,26 @@ void BM_ReportFigures(benchmark::State& state) {
 }
 BENCHMARK(BM_ReportFigures)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 
-// The front overlay figure's pixels (scene built once), without PNG encoding.
-void BM_RenderFrontOverlay(benchmark::State& state) {
+// One overlay figure's pixels (scene built once), without PNG encoding. Arg: 0 = the front
+// figure (900², supersampled), 1 = a side figure (450²).
+void BM_RenderOverlay(benchmark::State& state) {
   auto& f = fixture();
-  const pipeline::ReportFigureOptions o;
+  const bool side = state.range(0) != 0;
+  pipeline::ReportFigureOptions o;
+  if (side) {
+    o.size = o.side_size;
+    o.text_scale = std::max(1, o.text_scale / 2);
+  }
   const render::Scene scene = pipeline::overlay_scene(f.result, o);
   render::RenderOptions ro;
   ro.width = ro.height = o.size;
   ro.supersample = o.supersample;
   ro.text_scale = o.text_scale;
   ro.body_to_world = f.figures.body_to_world;
+  ro.view = side ? render::View::Side : render::View::Front;
   for (auto _ : state) benchmark::DoNotOptimize(render::render_scene(scene, ro).bytes().data());
 }
-BENCHMARK(BM_RenderFrontOverlay)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_RenderOverlay)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 void BM_EncodeFrontPng(benchmark::State& state) {
   auto& f = fixture();

@@ -270,12 +270,12 @@ ReportFigures render_report_figures(const RegisterResult& r, const ReportFigureO
   out.body_frame = frame.description;
   out.body_to_world = frame.body_to_world;
 
-  const TriangleMesh scan = overlay_scan(r);
+  TriangleMesh scan = overlay_scan(r);
   const render::Scene scene = overlay_scene_with(r, o, scan);
   ReportFigureOptions side = o;  // the four side views are shown two to a row: smaller images
   side.size = o.side_size;
   side.text_scale = std::max(1, o.text_scale / 2);
-  const render::Scene side_scene = overlay_scene_with(r, side, scan);
+  const render::Scene side_scene = overlay_scene_with(r, side, std::move(scan));  // two copies of the scan, not three
 
   struct Spec {
     const char* id;

@@ -202,7 +202,7 @@ void Rasterizer::draw_mesh(const Points& V, const Triangles& F, const Points& N,
   };
   std::vector<Tri> tris(static_cast<size_t>(F.rows()));
   std::vector<std::int32_t> winner(static_cast<size_t>(w_) * h_, -1);
-  int bx0 = w_, by0 = h_, bx1 = -1, by1 = -1;  // bounding box of the pixels won by this call
+  int bx0 = w_, by0 = h_, bx1 = -1, by1 = -1;  // a box around the pixels won by this call
   // Triangles in screen tiles of 32 × 32 pixels (row-major; stable within a tile), so that the
   // depth and winner buffers are walked with locality whatever the mesh's triangle order; the
   // triangles facing the camera first, then the back faces (the inside of the far wall of the
@@ -283,11 +283,28 @@ void Rasterizer::draw_mesh(const Points& V, const Triangles& F, const Points& N,
     const Linear ez{e0.dx * p0.depth + e1.dx * p1.depth + e2.dx * p2.depth,
                     e0.dy * p0.depth + e1.dy * p1.depth + e2.dy * p2.depth,
                     e0.c * p0.depth + e1.c * p1.depth + e2.c * p2.depth};
+    const Linear* edges[3] = {&e0, &e1, &e2};
+    bool wrote = false;
     for (int y = ys.lo; y <= ys.hi; ++y) {
       const double py = y + 0.5;
       const double x_start = xs.lo + 0.5;
-      double a0 = e0.at(x_start, py), a1 = e1.at(x_start, py), a2 = e2.at(x_start, py), az = ez.at(x_start, py);
-      for (int x = xs.lo; x <= xs.hi; ++x, a0 += e0.dx, a1 += e1.dx, a2 += e2.dx, az += ez.dx) {
+      // The samples of this row inside all three edges, from where each edge function crosses
+      // zero, one sample wider on each side for rounding (the exact test below decides).
+      int n_lo = 0, n_hi = xs.hi - xs.lo;
+      for (const Linear* e : edges) {
+        const double a = e->at(x_start, py);
+        if (e->dx > 0) {
+          if (a < 0) n_lo = std::max(n_lo, static_cast<int>(std::min(-a / e->dx, 1e9)) - 1);  // -a / dx > 0
+        } else if (e->dx < 0) {
+          n_hi = std::min(n_hi, static_cast<int>(std::clamp(a / -e->dx, -1e9, 1e9)) + 1);
+        } else if (a < 0) {
+          n_hi = -1;
+        }
+      }
+      if (n_lo > n_hi) continue;
+      const double x_first = x_start + n_lo;
+      double a0 = e0.at(x_first, py), a1 = e1.at(x_first, py), a2 = e2.at(x_first, py), az = ez.at(x_first, py);
+      for (int x = xs.lo + n_lo; x <= xs.lo + n_hi; ++x, a0 += e0.dx, a1 += e1.dx, a2 += e2.dx, az += ez.dx) {
         double b0 = a0, b1 = a1, b2 = a2;
         if (b0 < 0 || b1 < 0 || b2 < 0) continue;
         double depth = az;
@@ -302,24 +319,26 @@ void Rasterizer::draw_mesh(const Points& V, const Triangles& F, const Points& N,
         if (!(depth < depth_[idx])) continue;
         depth_[idx] = static_cast<float>(depth);
         winner[idx] = static_cast<std::int32_t>(t);
-        bx0 = std::min(bx0, x);
-        bx1 = std::max(bx1, x);
-        by0 = std::min(by0, y);
-        by1 = std::max(by1, y);
+        wrote = true;
       }
+    }
+    if (wrote) {  // pass 2 visits this box (conservative: it skips the pixels nobody won)
+      bx0 = std::min(bx0, xs.lo);
+      bx1 = std::max(bx1, xs.hi);
+      by0 = std::min(by0, ys.lo);
+      by1 = std::max(by1, ys.hi);
     }
   }
 
-  // The surface at the sample (x, y) on triangle t: its unit normal (facing the viewer) and base
-  // colour.
+  // The surface at the image point (px, py) (a sample's centre is (x + 0.5, y + 0.5)) on
+  // triangle t: its unit normal (facing the viewer) and base colour.
   struct Sample {
     Vec3 n, base;
   };
-  auto sample_at = [&](int x, int y, std::int32_t t) -> Sample {
+  auto sample_at = [&](double px, double py, std::int32_t t) -> Sample {
     const Tri& tri = tris[static_cast<size_t>(t)];
     const Index i0 = F(t, 0), i1 = F(t, 1), i2 = F(t, 2);
     const Projected &p0 = P[i0], &p1 = P[i1], &p2 = P[i2];
-    const double px = x + 0.5, py = y + 0.5;
     const double inv_area = 1.0 / tri.area;
     double b0 = edge(p1, p2, px, py) * inv_area;
     double b1 = edge(p2, p0, px, py) * inv_area;
@@ -351,21 +370,22 @@ void Rasterizer::draw_mesh(const Points& V, const Triangles& F, const Points& N,
     return {n, b0 * base_colour(i0) + b1 * base_colour(i1) + b2 * base_colour(i2)};
   };
   auto shade_sample = [&](int x, int y, std::int32_t t) {
-    const Sample s = sample_at(x, y, t);
+    const Sample s = sample_at(x + 0.5, y + 0.5, t);
     return scale_rgb(shade(s.base, s.n, tris[static_cast<size_t>(t)].front, light, style));
   };
 
   // Pass 2, by output pixel (a block of ss × ss samples). A block whose samples all show this
   // call's surface, facing the same way and within kFlatPixels output pixels of depth of each
   // other (not across a silhouette), is lit once with its samples' mean normal and colour, which
-  // for the small variations inside one pixel is their mean shade to within a grey level; other
-  // blocks are shaded sample by sample (edges stay anti-aliased).
+  // for the small variations inside one pixel is their mean shade to within a grey level (when
+  // one triangle covers the whole block: its normal and colour at the block's centre, their mean
+  // up to the normalisation); other blocks are shaded sample by sample (edges stay anti-aliased).
   constexpr double kFlatPixels = 2.0;
   const int ss = options_.supersample;
   for (int y0 = by0 / ss * ss; y0 <= by1; y0 += ss)
     for (int x0 = bx0 / ss * ss; x0 <= bx1; x0 += ss) {
       const std::int32_t t0 = winner[static_cast<size_t>(y0) * w_ + x0];
-      bool flat = t0 >= 0 && ss > 1;
+      bool flat = t0 >= 0 && ss > 1, one_triangle = true;
       if (flat) {
         const bool front = tris[static_cast<size_t>(t0)].front;
         float lo = depth_[static_cast<size_t>(y0) * w_ + x0], hi = lo;
@@ -373,6 +393,7 @@ void Rasterizer::draw_mesh(const Points& V, const Triangles& F, const Points& N,
           for (int dx = 0; dx < ss && flat; ++dx) {
             const size_t idx = static_cast<size_t>(y0 + dy) * w_ + x0 + dx;
             flat = winner[idx] >= 0 && tris[static_cast<size_t>(winner[idx])].front == front;
+            one_triangle = one_triangle && winner[idx] == t0;
             lo = std::min(lo, depth_[idx]);
             hi = std::max(hi, depth_[idx]);
           }
@@ -380,12 +401,18 @@ void Rasterizer::draw_mesh(const Points& V, const Triangles& F, const Points& N,
       }
       if (flat) {
         Sample mean{Vec3::Zero(), Vec3::Zero()};
-        for (int dy = 0; dy < ss; ++dy)
-          for (int dx = 0; dx < ss; ++dx) {
-            const Sample s = sample_at(x0 + dx, y0 + dy, winner[static_cast<size_t>(y0 + dy) * w_ + x0 + dx]);
-            mean.n += s.n;
-            mean.base += s.base;
-          }
+        if (one_triangle) {
+          mean = sample_at(x0 + 0.5 * ss, y0 + 0.5 * ss, t0);
+          mean.base *= ss * ss;
+        } else {
+          for (int dy = 0; dy < ss; ++dy)
+            for (int dx = 0; dx < ss; ++dx) {
+              const Sample s =
+                  sample_at(x0 + dx + 0.5, y0 + dy + 0.5, winner[static_cast<size_t>(y0 + dy) * w_ + x0 + dx]);
+              mean.n += s.n;
+              mean.base += s.base;
+            }
+        }
         const double norm = mean.n.norm();
         const Rgb c = norm > 0 ? scale_rgb(shade(mean.base / (ss * ss), mean.n / norm, tris[static_cast<size_t>(t0)].front,
                                                  light, style))
