@@ -3,8 +3,8 @@
 // (total_s: reading the scan and landmarks, the registration with transfer and measurements, and
 // writing the outputs without report.html, as `register --no-report-html` does) and the default
 // `register` run end to end (full_s: total_s plus rendering and writing report.html), with CPU
-// times (cpu_s: the register_scan call; tot_cpu_s: the whole run without report.html), as the
-// machine may be busy.
+// times (cpu_s: the register_scan call; tot_cpu_s: the whole run without report.html;
+// full_cpu_s: with it), as the machine may be busy.
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -107,7 +107,7 @@ void register_bench(CLI::App& app, int& exit_code) {
                                           "landmarks.mrk.json) and print medians: time_s (scan in memory -> "
                                           "fitted parameters), total_s (read, register, write the outputs without report.html, as "
                                           "register --no-report-html) and full_s (total_s + report.html: the default "
-                                          "register end to end, in this process)");
+                                          "register end to end, in this process), each with its CPU time (cpu_s, tot_cpu_s, full_cpu_s)");
   sub->add_option("dir", args->dir, "a case directory or a directory of them")->required();
   sub->add_option("--repeat,-n", args->repeat, "registrations per case (the median is reported)")
       ->check(CLI::Range(1, 100));
@@ -170,11 +170,11 @@ void register_bench(CLI::App& app, int& exit_code) {
         std::filesystem::temp_directory_path() / ("breastfit-bench-" + std::to_string(::getpid()));
     pipeline::RegisterOutputOptions output_options;
     output_options.report_html = false;
-    std::printf("%-24s %9s %9s %9s %9s %9s %6s %10s %10s %8s\n", "case", "time_s", "total_s", "full_s", "cpu_s",
-                "tot_cpu_s", "iters", "surf_mae", "lm_mae", "status");
-    std::vector<double> cpu_medians, total_cpu_medians;
+    std::printf("%-24s %9s %9s %9s %9s %9s %10s %6s %10s %10s %8s\n", "case", "time_s", "total_s", "full_s", "cpu_s",
+                "tot_cpu_s", "full_cpu_s", "iters", "surf_mae", "lm_mae", "status");
+    std::vector<double> cpu_medians, total_cpu_medians, full_cpu_medians;
     for (const auto& dir : experiments::find_case_dirs(args->dir)) {
-      std::vector<double> times, totals, fulls, cpus, total_cpus;
+      std::vector<double> times, totals, fulls, cpus, total_cpus, full_cpus;
       pipeline::RegisterResult last;
       for (int k = 0; k < args->repeat; ++k) {
         Timer total;
@@ -195,6 +195,7 @@ void register_bench(CLI::App& app, int& exit_code) {
         times.push_back(last.time_s);
         if (last.usable()) pipeline::write_report_html(scratch / "report.html", last, model->name);
         fulls.push_back(total.seconds());
+        full_cpus.push_back(process_cpu_s() - cpu_start);
       }
       const double med = median(times), total_med = median(totals), full_med = median(fulls);
       medians.push_back(med);
@@ -202,13 +203,16 @@ void register_bench(CLI::App& app, int& exit_code) {
       full_medians.push_back(full_med);
       cpu_medians.push_back(median(cpus));
       total_cpu_medians.push_back(median(total_cpus));
-      std::printf("%-24s %9.4f %9.4f %9.4f %9.4f %9.4f %6zu %10.3f %10.3f %8s\n", dir.filename().string().c_str(), med,
-                  total_med, full_med, median(cpus), median(total_cpus), last.fit.summary.iterations.size(),
+      full_cpu_medians.push_back(median(full_cpus));
+      std::printf("%-24s %9.4f %9.4f %9.4f %9.4f %9.4f %10.4f %6zu %10.3f %10.3f %8s\n", dir.filename().string().c_str(),
+                  med, total_med, full_med, median(cpus), median(total_cpus), median(full_cpus),
+                  last.fit.summary.iterations.size(),
                   last.surface.mae, last.landmarks.stats.mae, last.usable() ? "ok" : "FAILED");
       cases.push_back({{"case", dir.filename().string()}, {"time_s_median", med}, {"time_s_all", times},
                        {"total_s_median", total_med}, {"total_s_all", totals}, {"full_s_median", full_med},
                        {"full_s_all", fulls}, {"cpu_s_median", median(cpus)}, {"cpu_s_all", cpus},
                        {"total_cpu_s_median", median(total_cpus)}, {"total_cpu_s_all", total_cpus},
+                       {"full_cpu_s_median", median(full_cpus)}, {"full_cpu_s_all", full_cpus},
                        {"iterations", last.fit.summary.iterations.size()}, {"usable", last.usable()},
                        {"surface_mae_mm", last.surface.mae}, {"landmark_mae_mm", last.landmarks.stats.mae}});
     }
@@ -217,15 +221,17 @@ void register_bench(CLI::App& app, int& exit_code) {
     double load[1] = {0.0};
     if (getloadavg(load, 1) != 1) load[0] = -1;
     std::printf("median over cases of the per-case median time_s: %.4f s, total_s: %.4f s, full_s: %.4f s, cpu_s: "
-                "%.4f s, tot_cpu_s: %.4f s (%zu cases, %d runs each, %d threads, load average %.2f)\n",
+                "%.4f s, tot_cpu_s: %.4f s, full_cpu_s: %.4f s (%zu cases, %d runs each, %d threads, load average "
+                "%.2f)\n",
                 median(medians), median(total_medians), median(full_medians), median(cpu_medians),
-                median(total_cpu_medians), medians.size(), args->repeat, fit::resolve_threads(options.threads), load[0]);
+                median(total_cpu_medians), median(full_cpu_medians), medians.size(), args->repeat, fit::resolve_threads(options.threads), load[0]);
     if (!args->json_out.empty()) {
       std::ofstream f(args->json_out);
       if (!f) throw IoError(args->json_out, "cannot open for writing");
       f << nlohmann::json{{"cases", cases}, {"median_time_s", median(medians)},
                          {"median_total_s", median(total_medians)}, {"median_full_s", median(full_medians)},
                          {"median_cpu_s", median(cpu_medians)}, {"median_total_cpu_s", median(total_cpu_medians)},
+                         {"median_full_cpu_s", median(full_cpu_medians)},
                          {"load_average", load[0]}, {"repeat", args->repeat},
                          {"threads", fit::resolve_threads(options.threads)}}
                 .dump(1)
