@@ -17,6 +17,7 @@
 #include "breastfit/pipeline/register_scan.h"
 #include "breastfit/synth/case_writer.h"
 #include "breastfit/synth/synth_case.h"
+#include "registered_case.h"
 #include "breastfit/transfer/drawing_outputs.h"
 
 namespace {
@@ -24,26 +25,8 @@ namespace {
 using namespace breastfit;
 namespace fs = std::filesystem;
 
-struct Fixture {
-  fs::path dir = fs::temp_directory_path() / ("breastfit-phases-bench-" + std::to_string(::getpid()));
-  std::shared_ptr<const model::RiggedModel> model;
-  pipeline::RegisterRequest request;
-  pipeline::RegisterResult result;
-
-  Fixture() {
-    model = std::make_shared<const model::RiggedModel>(model::load_default_template());
-    synth::SynthOptions so;
-    so.seed = 3;
-    synth::write_case(dir / "case", synth::make_case(*model, so), true);
-    request.scan = io::read_mesh(dir / "case" / "scan.ply");
-    request.landmarks = io::read_landmarks(dir / "case" / "landmarks.mrk.json");
-    request.model = model;
-    result = pipeline::register_scan(request);
-  }
-  ~Fixture() {
-    std::error_code ec;
-    fs::remove_all(dir, ec);
-  }
+struct Fixture : bench::RegisteredCase {
+  Fixture() : RegisteredCase("breastfit-phases-bench") {}
 };
 
 Fixture& fixture() {

@@ -1,52 +1,23 @@
 // Benchmarks of report.html (docs/PERFORMANCE.md, docs/REPORT.md) on a synthetic case written to
 // a temporary directory (no external data): the six figures (sequential and concurrent), one
-// overlay figure's rendering alone (front or side), PNG encoding of a front figure, and the HTML with its
-// base64 images.
+// overlay figure's rendering alone (front or side), PNG encoding of a front figure, and the HTML
+// with its base64 images.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
-#include <filesystem>
-#include <memory>
-#include <string>
-#include <unistd.h>
 
-#include "breastfit/io/io.h"
-#include "breastfit/io/landmarks_io.h"
-#include "breastfit/model/template_library.h"
-#include "breastfit/pipeline/register_scan.h"
 #include "breastfit/pipeline/report_figures.h"
 #include "breastfit/pipeline/report_html.h"
 #include "breastfit/render/scene.h"
-#include "breastfit/synth/case_writer.h"
-#include "breastfit/synth/synth_case.h"
+#include "registered_case.h"
 
 namespace {
 
 using namespace breastfit;
-namespace fs = std::filesystem;
 
-struct Fixture {
-  fs::path dir = fs::temp_directory_path() / ("breastfit-report-bench-" + std::to_string(::getpid()));
-  std::shared_ptr<const model::RiggedModel> model;
-  pipeline::RegisterResult result;
+struct Fixture : bench::RegisteredCase {
   pipeline::ReportFigures figures;
-
-  Fixture() {
-    model = std::make_shared<const model::RiggedModel>(model::load_default_template());
-    synth::SynthOptions so;
-    so.seed = 3;
-    synth::write_case(dir / "case", synth::make_case(*model, so), true);
-    pipeline::RegisterRequest request;
-    request.scan = io::read_mesh(dir / "case" / "scan.ply");
-    request.landmarks = io::read_landmarks(dir / "case" / "landmarks.mrk.json");
-    request.model = model;
-    result = pipeline::register_scan(request);
-    figures = pipeline::render_report_figures(result);
-  }
-  ~Fixture() {
-    std::error_code ec;
-    fs::remove_all(dir, ec);
-  }
+  Fixture() : RegisteredCase("breastfit-report-bench") { figures = pipeline::render_report_figures(result); }
 };
 
 Fixture& fixture() {
