@@ -8,6 +8,7 @@
 #include <exception>
 #include <functional>
 #include <limits>
+#include <system_error>
 #include <thread>
 #include <utility>
 
@@ -80,7 +81,11 @@ void run_tasks(const std::vector<std::function<void()>>& tasks, unsigned workers
   };
   std::vector<std::thread> threads;
   const size_t n = std::clamp<size_t>(workers, 1, std::max<size_t>(tasks.size(), 1));
-  for (size_t w = 1; w < n; ++w) threads.emplace_back(work);
+  for (size_t w = 1; w < n; ++w) try {
+      threads.emplace_back(work);
+    } catch (const std::system_error&) {  // no more threads: the ones running take the rest
+      break;
+    }
   work();
   for (auto& t : threads) t.join();
   for (const auto& e : errors)
