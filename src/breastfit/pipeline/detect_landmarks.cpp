@@ -6,9 +6,11 @@
 #include <optional>
 
 #include "breastfit/core/errors.h"
+#include "breastfit/fit/nipple_apex.h"
 #include "breastfit/fit/pectoral_insertion.h"
 #include "breastfit/fit/scan_target.h"
 #include "breastfit/fit/sliding_landmarks.h"
+#include "breastfit/mesh/normals.h"
 #include "breastfit/model/template_library.h"
 
 namespace breastfit::pipeline {
@@ -52,8 +54,20 @@ std::optional<Vec3> pectoral_insertion_refined(const model::RiggedModel& model, 
   return fit::pectoral_insertion_on_scan(scan.mesh().V, *fitted, *arm, up, front, side == "R" ? *right : *left);
 }
 
+// The nipple on the scan at the final fit: the breast's apex along its level forward axis
+// (fit/nipple_apex.h; N: the fitted model's vertex normals); nullopt without the sternum's
+// landmarks or scan around the nipple.
+std::optional<Vec3> nipple_refined(const model::RiggedModel& model, const fit::FitResult& fit, const Points& N,
+                                   const std::string& name, const fit::ScanTarget& scan) {
+  const auto notch = fitted_landmark(model, fit, "sternal_notch"), xiphoid = fitted_landmark(model, fit, "xiphoid");
+  const auto fitted = fitted_landmark(model, fit, name);
+  if (!notch || !xiphoid || !fitted) return std::nullopt;
+  return fit::nipple_apex_on_scan(scan.mesh().V, fit.model_vertices, N, *fitted, (*notch - *xiphoid).normalized());
+}
+
 // The landmark-free fit's landmarks snapped onto the scan (`scan`: its closest-point index), the
-// pectoral insertions refined on the scan's anatomy where the detector is sure.
+// nipples (the breast's apex) and the pectoral insertions refined on the scan's anatomy where the
+// detectors are sure.
 DetectedLandmarks landmarks_on_scan(const model::RiggedModel& model, const std::string& scan_name,
                                     RegisterResult registration, const fit::ScanTarget& scan) {
   DetectedLandmarks out;
@@ -61,6 +75,7 @@ DetectedLandmarks landmarks_on_scan(const model::RiggedModel& model, const std::
   const RegisterResult& r = out.registration;
   if (!r.usable()) throw InvalidInput(scan_name + ": " + r.fit.summary.verdict.reason);
   const double oriented = orientation_confidence(r.fit.summary.orientation);
+  const Points normals = mesh::vertex_normals(r.fit.model_vertices, model.rest.F);
   for (const auto& p : r.model_landmarks_mm.points) {
     DetectedLandmark d;
     d.name = p.name;
@@ -79,6 +94,8 @@ DetectedLandmarks landmarks_on_scan(const model::RiggedModel& model, const std::
     const auto& held = r.fit.summary.anatomical_landmark_names;
     const bool anatomical = std::find(held.begin(), held.end(), p.name) != held.end();
     const bool nipple = p.name == "nipple_R" || p.name == "nipple_L";
+    if (nipple && anatomical)
+      if (const auto apex = nipple_refined(model, r.fit, normals, p.name, scan)) d.position_mm = scan.closest(*apex).point;
     d.method = !anatomical                  ? "fitted template, snapped to the scan"
                : nipple                     ? "breast tip on the scan"
                : p.name == "sternal_notch" ? "jugular notch on the scan"

@@ -2,8 +2,8 @@
 /// \file The 12 landmarks found on a scan without any given (`breastfit landmarks`): a landmark-free
 /// registration (fit/orientation_search.h; the nipples held at the breast tips found on the scan),
 /// then each of the fitted template's landmarks snapped onto the scan, with a confidence; the
-/// pectoral insertions, arms hanging, refined by their definition on the scan
-/// (fit/pectoral_insertion.h). The result is a starting point a person checks and corrects before
+/// nipples refined to the breast's apex on the scan (fit/nipple_apex.h) and the pectoral
+/// insertions, arms hanging, by their definition on the scan (fit/pectoral_insertion.h). The result is a starting point a person checks and corrects before
 /// `register --landmarks`.
 #include <string>
 #include <vector>
