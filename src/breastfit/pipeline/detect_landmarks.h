@@ -1,8 +1,10 @@
 #pragma once
 /// \file The 12 landmarks found on a scan without any given (`breastfit landmarks`): a landmark-free
 /// registration (fit/orientation_search.h; the nipples held at the breast tips found on the scan),
-/// then each of the fitted template's landmarks snapped onto the scan, with a confidence. The
-/// result is a starting point a person checks and corrects before `register --landmarks`.
+/// then each of the fitted template's landmarks snapped onto the scan, with a confidence; the
+/// nipples refined to the breast's apex on the scan (fit/nipple_apex.h) and the pectoral
+/// insertions, arms hanging, by their definition on the scan (fit/pectoral_insertion.h). The result is a starting point a person checks and corrects before
+/// `register --landmarks`.
 #include <string>
 #include <vector>
 
@@ -17,7 +19,10 @@ struct DetectedLandmark {
   /// In [0, 1]: the orientation's confidence (score margin) times the scan's support at the point
   /// (exp(−distance from the fitted landmark to the scan / 10 mm)).
   double confidence = 0;
-  std::string method;               ///< "breast tip on the scan" or "fitted template, snapped to the scan"
+  /// "fitted template, snapped to the scan", or the anatomy that held or refined it ("breast tip on
+  /// the scan", "jugular notch on the scan", "breast fold on the scan", "anterior axillary fold on the
+  /// scan": the pectoral insertion, fit/pectoral_insertion.h)
+  std::string method;
 };
 
 struct DetectedLandmarks {
