@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <string>
 
+#include <sys/stat.h>
+
 #include "breastfit/core/errors.h"
 #include "support/test_paths.h"
 
@@ -81,6 +83,74 @@ TEST(OutputSet, StaleFilesOfThePreviousSetGoForeignFilesStay) {
   for (const char* n : {"a.txt", "sub/b.txt", "c.txt"}) EXPECT_FALSE(fs::exists(dir / n)) << n;
   EXPECT_EQ(read(dir / "notes.txt"), "mine");
   EXPECT_EQ(read(dir / "sub" / "mine.txt"), "mine");
+}
+
+ino_t inode(const fs::path& p) {
+  struct stat st {};
+  EXPECT_EQ(::stat(p.c_str(), &st), 0) << p;
+  return st.st_ino;
+}
+
+// The previous set replaced in one step: DIR is a new directory holding the user's own files
+// (the same inodes, not copies), with DIR's permissions.
+TEST(OutputSet, ThePreviousDirectoryIsSwappedForTheNewOneKeepingTheUsersFiles) {
+  const fs::path parent = test::temp_dir();
+  const fs::path dir = parent / "out";
+  fs::create_directories(dir / "sub" / "deeper");
+  for (const auto& n : kNames) write(dir / n, "old");
+  write(dir / "notes.txt", "mine");
+  write(dir / "sub" / "deeper" / "mine.txt", "mine");
+  fs::create_symlink("notes.txt", dir / "link.txt");
+  fs::create_hard_link(dir / "notes.txt", parent / "notes_elsewhere.txt");
+  fs::permissions(dir, fs::perms::owner_all, fs::perm_options::replace);
+  const ino_t before = inode(dir);
+  {
+    OutputSet set(dir, kNames, "report.json");
+    write(set.path("a.txt"), "new");
+    write(set.path("report.json"), "new");
+    set.commit();
+  }
+  EXPECT_NE(inode(dir), before);  // swapped, not modified in place
+  EXPECT_EQ(fs::status(dir).permissions(), fs::perms::owner_all);
+  EXPECT_EQ(read(dir / "a.txt"), "new");
+  EXPECT_EQ(read(dir / "report.json"), "new");
+  for (const char* n : {"sub/b.txt", "c.txt"}) EXPECT_FALSE(fs::exists(dir / n)) << n;
+  EXPECT_TRUE(fs::equivalent(dir / "notes.txt", parent / "notes_elsewhere.txt"));
+  EXPECT_EQ(read(dir / "sub" / "deeper" / "mine.txt"), "mine");
+  EXPECT_TRUE(fs::is_symlink(dir / "link.txt"));
+  EXPECT_EQ(read(dir / "link.txt"), "mine");
+  EXPECT_EQ(staging_dirs_in(parent), 0);
+}
+
+// Where a swap would strand a shell in the removed directory, or replace a symbolic link by a
+// directory, the files are moved into the existing directory instead.
+TEST(OutputSet, AWorkingDirectoryOrALinkedDirectoryIsUpdatedInPlace) {
+  const fs::path parent = test::temp_dir();
+  const fs::path dir = parent / "out";
+  fs::create_directories(dir);
+  write(dir / "c.txt", "old");
+  const fs::path cwd = fs::current_path();
+  const ino_t before = inode(dir);
+  fs::current_path(dir);
+  {
+    OutputSet set(dir, kNames, "report.json");
+    write(set.path("report.json"), "in place");
+    set.commit();
+  }
+  fs::current_path(cwd);
+  EXPECT_EQ(inode(dir), before);
+  EXPECT_EQ(read(dir / "report.json"), "in place");
+  EXPECT_FALSE(fs::exists(dir / "c.txt"));
+
+  fs::create_directory_symlink("out", parent / "linked");
+  {
+    OutputSet set(parent / "linked", kNames, "report.json");
+    write(set.path("report.json"), "through the link");
+    set.commit();
+  }
+  EXPECT_TRUE(fs::is_symlink(parent / "linked"));
+  EXPECT_EQ(read(dir / "report.json"), "through the link");
+  EXPECT_EQ(staging_dirs_in(parent), 0);
 }
 
 TEST(OutputSet, RemovesTheStagingDirectoriesOfKilledRuns) {

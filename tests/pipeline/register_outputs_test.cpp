@@ -1,8 +1,8 @@
 // write_register_outputs' one-set rule (io/output_set.h) under kill -9: `breastfit register
 // --force` is killed at every step of writing its outputs (each file closed in the staging
-// directory, each removal and move in the output directory, watched with inotify) and the output
-// directory must then hold the complete previous set or the complete new one; only a kill inside
-// the final moves may leave a set without report.json, which readers refuse as incomplete.
+// directory, the swap of the staging and output directories, each file of the previous set
+// removed afterwards, watched with inotify) and the output directory must then hold the complete
+// previous set or the complete new one, never a mixed or incomplete set.
 #include "breastfit/pipeline/register_outputs.h"
 
 #include <gtest/gtest.h>
@@ -57,12 +57,13 @@ void restore(const fs::path& dir, const Snapshot& s) {
 }
 
 /// Watches the output directory and its parent (where the staging directory appears, and then
-/// that staging directory): one count per file written, removed or moved.
+/// that staging directory): one count per file written, removed or moved, and one for the
+/// directory swapped into the output directory's name.
 class WriteWatcher {
  public:
   explicit WriteWatcher(const fs::path& out) : out_(out) {
     fd_ = inotify_init1(IN_NONBLOCK | IN_CLOEXEC);
-    parent_ = inotify_add_watch(fd_, out.parent_path().c_str(), IN_CREATE | IN_ONLYDIR);
+    parent_ = inotify_add_watch(fd_, out.parent_path().c_str(), IN_CREATE | IN_MOVED_TO | IN_ONLYDIR);
     inotify_add_watch(fd_, out.c_str(), IN_MOVED_TO | IN_DELETE | IN_CLOSE_WRITE);
   }
   ~WriteWatcher() { close(fd_); }
@@ -84,6 +85,9 @@ class WriteWatcher {
             staging_ = inotify_add_watch(fd_, (out_.parent_path() / name).c_str(), IN_CLOSE_WRITE);
             ++n;  // the staging directory
             in_out->push_back(false);
+          } else if ((ev->mask & IN_MOVED_TO) && name == out_.filename().string()) {
+            ++n;  // the new set swapped in
+            in_out->push_back(true);
           }
         } else if (!(ev->mask & IN_IGNORED)) {
           ++n;
@@ -201,14 +205,14 @@ TEST(RegisterOutputs, KilledAtAnyStepLeavesTheOldSetOrTheNewOne) {
   ASSERT_EQ(new_set.size(), register_output_names().size());
   ASSERT_NE(old_set.at("fitted.ply"), new_set.at("fitted.ply"));
 
-  // The file events of a whole run: the staging directory, each file written there, then in
-  // the output directory each stale file removed and each file moved in. The kills: at the
-  // staging directory, halfway through the writing, and at every event of the commit.
+  // The file events of a whole run: the staging directory, each file written there, the swap,
+  // then each file of the previous set removed. The kills: at the staging directory, halfway
+  // through the writing, and at every event of the commit.
   std::vector<bool> events;
   restore(out, old_set);
   ASSERT_FALSE(run_and_kill(out, new_args, 0, &events));
   const int total = static_cast<int>(events.size());
-  ASSERT_GE(total, static_cast<int>(2 * register_output_names().size()));
+  ASSERT_GE(total, static_cast<int>(register_output_names().size() + 2));
   std::vector<int> kill_points;
   for (int k = 1; k <= total; ++k)
     if (k == 1 || k == total / 4 || events[static_cast<size_t>(k - 1)]) kill_points.push_back(k);
@@ -233,9 +237,9 @@ TEST(RegisterOutputs, KilledAtAnyStepLeavesTheOldSetOrTheNewOne) {
             << name << " is not from the run that wrote report.json: a mixed set (killed at event " << k << ")";
       }
       ++(marker.old_run ? old_complete : new_complete);
-    } else {  // killed between removing the old report.json and moving the new one in
-      EXPECT_TRUE(killed) << k;
-      EXPECT_THROW(transfer::read_fit_directory(out), IoError) << k;
+    } else {
+      ADD_FAILURE() << "a set without report.json (killed at event " << k << ")";
+      EXPECT_THROW(transfer::read_fit_directory(out), IoError) << k;  // at least refused
       ++incomplete;
     }
     if (!killed) break;  // the run finished before the k-th event: later ones cannot be reached
@@ -243,6 +247,7 @@ TEST(RegisterOutputs, KilledAtAnyStepLeavesTheOldSetOrTheNewOne) {
   std::printf("%zu kills: %d old complete, %d new complete, %d without report.json (of %d events)\n",
               kill_points.size(), old_complete, new_complete, incomplete, total);
   EXPECT_GT(old_complete, 0);  // some kills landed while the outputs were being written
+  EXPECT_GT(new_complete, 0);  // and some after the swap
 
   // A run after the kills removes their staging directories and writes the whole new set.
   ASSERT_FALSE(run_and_kill(out, new_args, 0));

@@ -3,24 +3,36 @@
 ///
 /// A command that writes several files into DIR (breastfit register, synth, demo) writes them
 /// into a staging directory next to DIR (same parent, hence the same file system:
-/// `.DIR.breastfit-tmp-<pid>-<n>`) and moves them into DIR only when all are written:
+/// `.DIR.breastfit-tmp-<pid>-<n>`) and, when all are written, swaps it with DIR in one step:
+///  - without a previous DIR, the staging directory is renamed to DIR;
+///  - otherwise every file in DIR outside the set's names (the user's own files) is hard-linked
+///    into the staging directory (same inodes; subdirectories recreated, symbolic links copied),
+///    the staging directory gets DIR's permissions, and the two are exchanged atomically (Linux
+///    renameat2 RENAME_EXCHANGE); the old directory, now under the staging name, is removed.
+/// So DIR always holds the complete previous set or the complete new one, whenever the process
+/// is killed; files of the previous set that this run did not write are gone with the swap.
+/// Where the swap cannot be used — DIR is a symbolic link, the working directory is DIR or
+/// inside it (a shell there would be left in the removed directory), DIR holds a special file or
+/// the file system has no hard links or exchange — the files are moved one by one instead:
 ///  1. the set's completion marker (for register: report.json) is removed from DIR, so the
 ///     previous set is no longer complete;
 ///  2. every file of the set's names that this run did not write is removed from DIR (a stale
 ///     file of the previous run);
 ///  3. the written files are renamed into DIR (rename over an existing file is atomic), the
 ///     marker last.
-/// So whenever the marker exists in DIR, every file of the set in DIR belongs to the run that
+/// Then whenever the marker exists in DIR, every file of the set in DIR belongs to the run that
 /// wrote the marker; a run killed during step 1-3 leaves a set without the marker, which
 /// readers refuse as incomplete. A run that fails before commit() leaves DIR untouched. Files in
-/// DIR outside the set's names are never touched. Staging directories left by killed runs into
-/// the same DIR are removed by the next run (two runs into the same DIR at the same time are not
-/// supported). The guarantee is against an interrupted process, not a power loss (no fsync).
+/// DIR outside the set's names are never touched (nor lost). Staging directories left by killed
+/// runs into the same DIR are removed by the next run (two runs into the same DIR at the same
+/// time are not supported). The guarantee is against an interrupted process, not a power loss
+/// (no fsync).
 ///
 /// Loose files in a shared directory (`render`'s PNGs under a prefix, `map`'s markups and
 /// confidence, `batch`'s cohort.csv/.html) use Staging::InsideDir: the staging directory is
 /// `DIR/.<marker>.breastfit-tmp-<pid>-<n>`, inside DIR (which may be the working directory, whose
-/// parent need not be writable), and only staging directories of the same marker are leftovers.
+/// parent need not be writable), only staging directories of the same marker are leftovers, and
+/// the files are always moved one by one (a shared directory is never swapped).
 /// Before anything is moved, commit() checks that no written file's destination is a directory,
 /// so that failure leaves DIR as it was too.
 #include <filesystem>
@@ -50,7 +62,7 @@ class OutputSet {
   /// subdirectories are created as needed. \throws std::invalid_argument for an unknown name
   std::filesystem::path path(const std::string& name) const;
 
-  /// Moves the written files into `dir` (created when missing) as described in the file comment.
+  /// Puts the written files into `dir` (created when missing) as described in the file comment.
   /// \throws IoError when a file cannot be removed or moved; std::logic_error without the marker
   void commit();
 
@@ -58,6 +70,9 @@ class OutputSet {
   const std::filesystem::path& staging_dir() const { return staging_; }
 
  private:
+  /// The one-step swap (see the file comment); false when it cannot be used, `dir` unchanged.
+  bool swap_in();
+
   std::filesystem::path dir_, staging_;
   std::vector<std::string> names_;
   std::string marker_;
