@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "breastfit/core/errors.h"
-#include "breastfit/io/detail/file_bytes.h"
+#include "breastfit/io/detail/mapped_file.h"
 #include "breastfit/io/detail/mesh_arrays.h"
 #include "breastfit/io/detail/polygon_triangulation.h"
 #include "breastfit/io/detail/text.h"
@@ -869,7 +869,8 @@ TriangleMesh read_ply_from_memory(std::string_view bytes, const std::string& nam
 }
 
 TriangleMesh read_ply(const std::filesystem::path& path) {
-  return read_ply_from_memory(detail::read_file_bytes(path), path.string());
+  const detail::MappedFile file(path);
+  return read_ply_from_memory(file.bytes(), path.string());
 }
 
 }  // namespace breastfit::io
