@@ -1,5 +1,6 @@
 #include "breastfit/spatial/detail/bvh4.h"
 
+#include <cstddef>
 #include <limits>
 
 namespace breastfit::spatial::detail {
@@ -25,6 +26,21 @@ void set_box(Bvh4Node& w, int s, const BvhNode& n) {
     w.lo[k][s] = n.lo[k];
     w.hi[k][s] = n.hi[k];
   }
+}
+
+/// How many wide nodes emit() makes for binary inner node `b`.
+std::size_t count_wide_nodes(const BvhNodes& binary, std::int32_t b) {
+  std::size_t n = 1;
+  const BvhNode& node = binary[static_cast<std::size_t>(b)];
+  for (int c = 0; c < 2; ++c) {
+    const BvhNode& child = binary[static_cast<std::size_t>(node.first + c)];
+    if (child.is_leaf()) continue;
+    for (int g = 0; g < 2; ++g) {
+      if (!binary[static_cast<std::size_t>(child.first + g)].is_leaf())
+        n += count_wide_nodes(binary, child.first + g);
+    }
+  }
+  return n;
 }
 
 /// Appends the wide node for binary inner node `b` and, depth first, those of its inner
@@ -68,9 +84,6 @@ std::int32_t emit(const BvhNodes& binary, std::int32_t b, Bvh4Nodes& out) {
 Bvh4Nodes collapse_to_bvh4(const BvhNodes& binary) {
   Bvh4Nodes out;
   if (binary.empty()) return out;
-  std::size_t inner = 0;
-  for (std::size_t i = 0; i < binary.size(); ++i) inner += (i != 1 && !binary[i].is_leaf());
-  out.reserve(inner / 2 + 2);
   if (binary[0].is_leaf()) {
     Bvh4Node w = empty_node();
     set_box(w, 0, binary[0]);
@@ -79,6 +92,7 @@ Bvh4Nodes collapse_to_bvh4(const BvhNodes& binary) {
     out.push_back(w);
     return out;
   }
+  out.reserve(count_wide_nodes(binary, 0));  // exactly: no reallocation, no slack
   emit(binary, 0, out);
   return out;
 }
