@@ -29,12 +29,15 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr int kMaxLeafSize = 4;
 
 /// A leaf's data is one self-contained block of whole 64-byte lines: this header, then the
-/// leaf's distinct vertices (3 doubles each). Compared with a vertex-index indirection this
-/// needs no second memory hop, and compared with 3 corners per triangle it stores shared
-/// corners once (the query cost on a large mesh is dominated by cache misses).
+/// leaf's distinct vertices (3 doubles each, or 3 floats each when every coordinate of the leaf
+/// is exactly a float — scans stored in float — which loses nothing and takes half the bytes).
+/// Compared with a vertex-index indirection this needs no second memory hop, and compared with
+/// 3 corners per triangle it stores shared corners once (the query cost on a large mesh is
+/// dominated by cache misses).
 struct LeafHeader {
   std::uint8_t count;                        ///< triangles in the leaf
   std::uint8_t num_vertices;                 ///< distinct corners stored after the header
+  std::uint8_t float_coords;                 ///< 1: the corners are stored as floats (exact)
   std::uint8_t flags[kMaxLeafSize];          ///< detail::kFlag* per triangle
   std::uint8_t corner[kMaxLeafSize][3];      ///< index into the block's vertices
   std::int32_t face[kMaxLeafSize];           ///< original face index
@@ -134,11 +137,16 @@ struct ClosestPointIndex::Impl {
     std::memset(base, 0, kHeaderBytes);
     std::memcpy(base, &h, sizeof(LeafHeader));
     auto* coords = reinterpret_cast<double*>(base + kHeaderBytes);
+    auto* float_coords = reinterpret_cast<float*>(base + kHeaderBytes);
     double lo[3] = {kInf, kInf, kInf}, hi[3] = {-kInf, -kInf, -kInf};
     for (int j = 0; j < nv; ++j) {
       const double* p = V + 3 * static_cast<std::ptrdiff_t>(verts[j]);
       for (int k = 0; k < 3; ++k) {
-        coords[3 * j + k] = p[k];
+        if (h.float_coords) {
+          float_coords[3 * j + k] = static_cast<float>(p[k]);
+        } else {
+          coords[3 * j + k] = p[k];
+        }
         lo[k] = std::min(lo[k], p[k]);
         hi[k] = std::max(hi[k], p[k]);
       }
@@ -163,8 +171,21 @@ struct ClosestPointIndex::Impl {
     return h;
   }
 
-  static std::size_t block_lines(int num_vertices) {
-    return (kHeaderBytes + 24 * static_cast<std::size_t>(num_vertices) + 63) / 64;
+  static std::size_t block_lines(int num_vertices, bool float_coords) {
+    const std::size_t bytes_per_vertex = float_coords ? 12 : 24;
+    return (kHeaderBytes + bytes_per_vertex * static_cast<std::size_t>(num_vertices) + 63) / 64;
+  }
+
+  /// Whether every coordinate of the vertices verts[0, nv) is exactly a float.
+  bool float_exact(const Index* verts, int nv) const {
+    const double* V = mesh.V.data();
+    for (int j = 0; j < nv; ++j) {
+      const double* p = V + 3 * static_cast<std::ptrdiff_t>(verts[j]);
+      for (int k = 0; k < 3; ++k) {
+        if (static_cast<double>(static_cast<float>(p[k])) != p[k]) return false;
+      }
+    }
+    return true;
   }
 
   /// Replaces each leaf's slot range by its block (see LeafHeader) and sets its box. A leaf's
@@ -201,8 +222,10 @@ struct ClosestPointIndex::Impl {
     std::vector<std::size_t> start(leaves.size() + 1, 0);
     detail::parallel_for_chunks(leaves.size(), kLeafChunk, threads, [&](std::size_t, std::size_t b, std::size_t e) {
       Index verts[3 * kMaxLeafSize];
-      for (std::size_t l = b; l < e; ++l)
-        start[l + 1] = block_lines(corners(nodes[static_cast<std::size_t>(leaves[l])], verts, nullptr));
+      for (std::size_t l = b; l < e; ++l) {
+        const int nv = corners(nodes[static_cast<std::size_t>(leaves[l])], verts, nullptr);
+        start[l + 1] = block_lines(nv, float_exact(verts, nv));
+      }
     });
     for (std::size_t l = 0; l < leaves.size(); ++l) start[l + 1] += start[l];
     blocks.resize(start.back());  // uninitialised: every line is written below
@@ -213,6 +236,7 @@ struct ClosestPointIndex::Impl {
         LeafHeader h = leaf_header(n, prims);
         const int nv = corners(n, verts, &h);
         h.num_vertices = static_cast<std::uint8_t>(nv);
+        h.float_coords = float_exact(verts, nv) ? 1 : 0;
         write_leaf_block(n, h, verts, nv, start[l], start[l + 1] - start[l]);
       }
     });
@@ -224,7 +248,7 @@ struct ClosestPointIndex::Impl {
     // in order.
     std::size_t max_lines = 0;
     for (const detail::BvhNode& n : nodes) {
-      if (n.is_leaf()) max_lines += block_lines(3 * n.count);
+      if (n.is_leaf()) max_lines += block_lines(3 * n.count, false);
     }
     blocks.resize(max_lines);
     std::size_t used = 0;
@@ -257,7 +281,8 @@ struct ClosestPointIndex::Impl {
         }
       }
       h.num_vertices = static_cast<std::uint8_t>(nv);
-      const std::size_t lines = block_lines(nv);
+      h.float_coords = float_exact(verts, nv) ? 1 : 0;
+      const std::size_t lines = block_lines(nv, h.float_coords != 0);
       write_leaf_block(n, h, verts, nv, used, lines);
       used += lines;
     }
@@ -289,7 +314,13 @@ struct ClosestPointIndex::Impl {
                    double slack) const {
     const unsigned char* base = blocks[static_cast<std::size_t>(line)].bytes;
     const auto* h = reinterpret_cast<const LeafHeader*>(base);
-    const auto* coords = reinterpret_cast<const double*>(base + kHeaderBytes);
+    const double* coords = reinterpret_cast<const double*>(base + kHeaderBytes);
+    double widened[9 * kMaxLeafSize];
+    if (h->float_coords) {  // exact: the stored floats are the mesh's doubles
+      const auto* f = reinterpret_cast<const float*>(base + kHeaderBytes);
+      for (int j = 0; j < 3 * h->num_vertices; ++j) widened[j] = f[j];
+      coords = widened;
+    }
     for (int i = 0; i < h->count; ++i) {
       double bary[3];
       ClosestFeature feature;
