@@ -225,6 +225,28 @@ void check_counts_against_size(const PlyHeader& header, std::uint64_t data_size,
 
 enum class Status { Ok, End, Bad };
 
+template <typename T>
+double load_as(const unsigned char* p) {
+  T v;
+  std::memcpy(&v, p, sizeof(T));
+  return static_cast<double>(v);
+}
+
+/// Reads one scalar of type t (native byte order) at p.
+inline double load_scalar(const unsigned char* p, PlyType t) {
+  switch (t) {
+    case PlyType::Int8: return load_as<std::int8_t>(p);
+    case PlyType::UInt8: return load_as<std::uint8_t>(p);
+    case PlyType::Int16: return load_as<std::int16_t>(p);
+    case PlyType::UInt16: return load_as<std::uint16_t>(p);
+    case PlyType::Int32: return load_as<std::int32_t>(p);
+    case PlyType::UInt32: return load_as<std::uint32_t>(p);
+    case PlyType::Float32: return load_as<float>(p);
+    case PlyType::Float64: return load_as<double>(p);
+  }
+  return 0.0;
+}
+
 class BinarySource {
  public:
   BinarySource(std::string_view data, bool big_endian)
@@ -239,56 +261,7 @@ class BinarySource {
     std::memcpy(b, p_, n);
     if (swap_) std::reverse(b, b + n);
     p_ += n;
-    switch (t) {
-      case PlyType::Int8: {
-        std::int8_t v;
-        std::memcpy(&v, b, 1);
-        out = v;
-        break;
-      }
-      case PlyType::UInt8: {
-        std::uint8_t v;
-        std::memcpy(&v, b, 1);
-        out = v;
-        break;
-      }
-      case PlyType::Int16: {
-        std::int16_t v;
-        std::memcpy(&v, b, 2);
-        out = v;
-        break;
-      }
-      case PlyType::UInt16: {
-        std::uint16_t v;
-        std::memcpy(&v, b, 2);
-        out = v;
-        break;
-      }
-      case PlyType::Int32: {
-        std::int32_t v;
-        std::memcpy(&v, b, 4);
-        out = v;
-        break;
-      }
-      case PlyType::UInt32: {
-        std::uint32_t v;
-        std::memcpy(&v, b, 4);
-        out = v;
-        break;
-      }
-      case PlyType::Float32: {
-        float v;
-        std::memcpy(&v, b, 4);
-        out = v;
-        break;
-      }
-      case PlyType::Float64: {
-        double v;
-        std::memcpy(&v, b, 8);
-        out = v;
-        break;
-      }
-    }
+    out = load_scalar(b, t);
     return Status::Ok;
   }
 
@@ -685,44 +658,6 @@ TriangleMesh read_body(Source& source, const PlyHeader& header, const std::strin
   return mesh;
 }
 
-/// Reads one scalar of type t (native byte order) at p.
-inline double load_scalar(const unsigned char* p, PlyType t) {
-  switch (t) {
-    case PlyType::Int8: return static_cast<double>(static_cast<std::int8_t>(*p));
-    case PlyType::UInt8: return static_cast<double>(*p);
-    case PlyType::Int16: {
-      std::int16_t v;
-      std::memcpy(&v, p, 2);
-      return v;
-    }
-    case PlyType::UInt16: {
-      std::uint16_t v;
-      std::memcpy(&v, p, 2);
-      return v;
-    }
-    case PlyType::Int32: {
-      std::int32_t v;
-      std::memcpy(&v, p, 4);
-      return v;
-    }
-    case PlyType::UInt32: {
-      std::uint32_t v;
-      std::memcpy(&v, p, 4);
-      return v;
-    }
-    case PlyType::Float32: {
-      float v;
-      std::memcpy(&v, p, 4);
-      return v;
-    }
-    case PlyType::Float64: {
-      double v;
-      std::memcpy(&v, p, 8);
-      return v;
-    }
-  }
-  return 0.0;
-}
 
 /// The layout of most scanners' binary PLYs, read straight into the mesh (no per-value
 /// dispatch through a data source, no intermediate arrays): native byte order, a 'vertex'
