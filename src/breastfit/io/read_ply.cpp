@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <initializer_list>
 #include <limits>
 #include <optional>
 #include <string>
@@ -710,6 +711,21 @@ std::optional<TriangleMesh> read_simple_binary(const PlyHeader& header, std::str
     const auto k = static_cast<std::size_t>(j);
     return std::pair<std::size_t, PlyType>(offset[k], vertex.properties[k].type);
   };
+  // out (nv rows) = convert(type, value) of the vertex properties `cols` (offset, type), row by row.
+  auto gather = [&](auto& out, std::initializer_list<int> cols, auto convert) {
+    std::pair<std::size_t, PlyType> c[3];
+    int n = 0;
+    for (int j : cols) c[n++] = role(j);
+    out.resize(static_cast<Eigen::Index>(nv), n);
+    auto* dst = out.data();
+    for (std::size_t i = 0; i < nv; ++i) {
+      for (int k = 0; k < n; ++k) {
+        dst[static_cast<std::size_t>(n) * i + static_cast<std::size_t>(k)] =
+            convert(c[k].second, load_scalar(bytes + i * stride + c[k].first, c[k].second));
+      }
+    }
+  };
+  const auto as_is = [](PlyType, double v) { return v; };
   TriangleMesh mesh;
   const auto rows = static_cast<Eigen::Index>(nv);
   {
@@ -727,45 +743,17 @@ std::optional<TriangleMesh> read_simple_binary(const PlyHeader& header, std::str
         }
       }
     } else {
-      for (std::size_t i = 0; i < nv; ++i) {
-        for (int k = 0; k < 3; ++k) {
-          V[3 * i + static_cast<std::size_t>(k)] =
-              load_scalar(bytes + i * stride + xyz[k].first, xyz[k].second);
-        }
-      }
+      gather(mesh.V, {roles.x, roles.y, roles.z}, as_is);
     }
     if (!mesh.V.allFinite()) return std::nullopt;
   }
   if (has_normals) {
-    const std::pair<std::size_t, PlyType> n[3] = {role(roles.nx), role(roles.ny), role(roles.nz)};
-    mesh.N.resize(rows, 3);
-    for (std::size_t i = 0; i < nv; ++i) {
-      for (int k = 0; k < 3; ++k) {
-        mesh.N.data()[3 * i + static_cast<std::size_t>(k)] =
-            load_scalar(bytes + i * stride + n[k].first, n[k].second);
-      }
-    }
+    gather(mesh.N, {roles.nx, roles.ny, roles.nz}, as_is);
     if (!mesh.N.allFinite()) mesh.N.resize(0, 3);
   }
-  if (has_colors) {
-    const std::pair<std::size_t, PlyType> c[3] = {role(roles.r), role(roles.g), role(roles.b)};
-    mesh.C.resize(rows, 3);
-    for (std::size_t i = 0; i < nv; ++i) {
-      for (int k = 0; k < 3; ++k) {
-        mesh.C.data()[3 * i + static_cast<std::size_t>(k)] =
-            to_color_byte(c[k].second, load_scalar(bytes + i * stride + c[k].first, c[k].second));
-      }
-    }
-  }
+  if (has_colors) gather(mesh.C, {roles.r, roles.g, roles.b}, to_color_byte);
   if (has_uv) {
-    const std::pair<std::size_t, PlyType> t[2] = {role(roles.u), role(roles.v)};
-    mesh.UV.resize(rows, 2);
-    for (std::size_t i = 0; i < nv; ++i) {
-      for (int k = 0; k < 2; ++k) {
-        mesh.UV.data()[2 * i + static_cast<std::size_t>(k)] =
-            load_scalar(bytes + i * stride + t[k].first, t[k].second);
-      }
-    }
+    gather(mesh.UV, {roles.u, roles.v}, as_is);
     if (!mesh.UV.allFinite()) mesh.UV.resize(0, 2);
   }
   // Faces: triangles only; one with a repeated corner is dropped (as the triangulator does).
