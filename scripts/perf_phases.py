@@ -44,6 +44,13 @@ PHASES = [
     ("write other outputs", ["breastfit::pipeline::write_register_outputs"], None),
     ("rest of register_scan", ["breastfit::pipeline::register_scan"], None),
     ("OpenMP workers (libgomp, outside a phase)", ["gomp_thread_start"], None),
+    ("hashing the inputs (provenance)", ["breastfit::io::file_sha256_hex"], None),
+    # Eigen's blocked kernels use large stack buffers, so the DWARF unwinder often loses their
+    # callers: these samples (mostly the assembly's rank updates, some sparse Cholesky of surface
+    # detail and measurements) belong to a phase above but cannot be placed.
+    ("Eigen kernels, caller lost by the unwinder", ["Eigen::internal::", "Eigen::Simplicial"], None),
+    ("process start (dynamic linking)", ["_dl_start", "_dl_relocate_object", "_dl_fixup", "_dl_init"], None),
+    ("process exit (unmapping memory)", ["exit_mmap", "do_exit", "__run_exit_handlers"], None),
 ]
 
 

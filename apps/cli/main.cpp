@@ -2,12 +2,14 @@
 #include <iostream>
 
 #include "breastfit/core/errors.h"
+#include "breastfit/core/heap_reuse.h"
 #include "command_support.h"
 #include "commands.h"
 #include "exit_codes.h"
 
 int main(int argc, char** argv) {
   using namespace breastfit::cli;
+  breastfit::keep_freed_heap_memory();  // large scans: reuse freed memory (docs/PERFORMANCE.md)
   set_command_line(argc, argv);
   CLI::App app{"breastfit: rigged-template registration of breast scans and transfer of surgical drawings"};
   app.require_subcommand(1);

@@ -2,10 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <iterator>
 #include <string>
+#include <vector>
 
 #include "breastfit/core/errors.h"
 #include "support/test_paths.h"
@@ -111,6 +113,97 @@ TEST(ReadPly, FacesRepeatingAVertexAreDroppedZeroAreaKept) {
   ASSERT_EQ(m.num_faces(), 2);
   EXPECT_EQ(m.F.row(0), (Eigen::RowVector3i(0, 1, 2)));
   EXPECT_EQ(m.F.row(1), (Eigen::RowVector3i(0, 1, 3)));
+}
+
+/// The usual scanner layout (a vertex element of scalars, then a face element with only a
+/// uchar/int index list), which little-endian files read through a direct path: `faces` are
+/// written as given (count first). `extra` adds normals, colours and texture coordinates.
+std::string scanner_ply(bool big_endian, const std::vector<std::vector<std::int32_t>>& faces,
+                        bool extra, float bad_x = 0.0f) {
+  std::string s = "ply\nformat ";
+  s += big_endian ? "binary_big_endian" : "binary_little_endian";
+  s += " 1.0\nelement vertex 5\nproperty float x\nproperty float y\nproperty float z\n";
+  if (extra) {
+    s += "property double nx\nproperty double ny\nproperty double nz\nproperty uchar red\n"
+         "property uchar green\nproperty uchar blue\nproperty float s\nproperty float t\n";
+  }
+  s += "element face " + std::to_string(faces.size()) +
+       "\nproperty list uchar int vertex_indices\nend_header\n";
+  for (int i = 0; i < 5; ++i) {
+    put(s, i == 4 ? bad_x + 0.1f * static_cast<float>(i) : 0.1f * static_cast<float>(i), big_endian);
+    put(s, 1.5f - static_cast<float>(i), big_endian);
+    put(s, static_cast<float>(i * i) / 3.0f, big_endian);
+    if (extra) {
+      put(s, 0.0, big_endian);
+      put(s, i == 2 ? -1.0 : 1.0, big_endian);
+      put(s, 0.25 * i, big_endian);
+      put(s, static_cast<std::uint8_t>(10 * i), big_endian);
+      put(s, static_cast<std::uint8_t>(255 - i), big_endian);
+      put(s, static_cast<std::uint8_t>(7), big_endian);
+      put(s, 0.5f * static_cast<float>(i), big_endian);
+      put(s, 1.0f / 3.0f, big_endian);
+    }
+  }
+  for (const auto& f : faces) {
+    put(s, static_cast<std::uint8_t>(f.size()), big_endian);
+    for (std::int32_t v : f) put(s, v, big_endian);
+  }
+  return s;
+}
+
+void expect_same_mesh(const TriangleMesh& a, const TriangleMesh& b) {
+  EXPECT_EQ(a.V, b.V);
+  EXPECT_EQ(a.F, b.F);
+  EXPECT_EQ(a.N, b.N);
+  EXPECT_EQ(a.C, b.C);
+  EXPECT_EQ(a.UV, b.UV);
+  EXPECT_EQ(a.FUV, b.FUV);
+}
+
+TEST(ReadPly, ScannerLayoutReadsAsTheGeneralReaderDoes) {
+  // Big-endian files take the general reader on this (little-endian) machine: the direct
+  // path for the little-endian file must give the same mesh, bit for bit.
+  const std::vector<std::vector<std::int32_t>> triangles = {{0, 1, 2}, {1, 3, 2}, {2, 2, 4}, {0, 4, 3}};
+  for (bool extra : {false, true}) {
+    SCOPED_TRACE(extra ? "normals, colours, texture coordinates" : "positions only");
+    const TriangleMesh little = read_ply_from_memory(scanner_ply(false, triangles, extra), "l.ply");
+    const TriangleMesh big = read_ply_from_memory(scanner_ply(true, triangles, extra), "b.ply");
+    expect_same_mesh(little, big);
+    ASSERT_EQ(little.num_faces(), 3);  // the face repeating vertex 2 is dropped
+    EXPECT_EQ(little.F.row(2), (Eigen::RowVector3i(0, 4, 3)));
+    EXPECT_EQ(little.V(1, 0), static_cast<double>(0.1f));
+    EXPECT_EQ(little.has_normals(), extra);
+    EXPECT_EQ(little.has_colors(), extra);
+    EXPECT_EQ(little.has_texcoords(), extra);
+  }
+  // A quad among the triangles: read (and triangulated) by the general reader.
+  const std::vector<std::vector<std::int32_t>> mixed = {{0, 1, 2}, {1, 3, 4, 2}};
+  const TriangleMesh quad = read_ply_from_memory(scanner_ply(false, mixed, true), "q.ply");
+  expect_same_mesh(quad, read_ply_from_memory(scanner_ply(true, mixed, true), "q.ply"));
+  EXPECT_EQ(quad.num_faces(), 3);
+}
+
+TEST(ReadPly, ScannerLayoutErrorsAreTheGeneralReadersErrors) {
+  const auto message = [](const std::string& bytes) {
+    try {
+      read_ply_from_memory(bytes, "scan.ply");
+    } catch (const IoError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  for (const auto& faces : std::vector<std::vector<std::vector<std::int32_t>>>{
+           {{0, 1, 5}}, {{0, -1, 2}}, {{0, 1}}}) {
+    const std::string little = message(scanner_ply(false, faces, false));
+    EXPECT_NE(little, "no error");
+    EXPECT_EQ(little, message(scanner_ply(true, faces, false)));
+  }
+  const std::string nan_x = message(scanner_ply(false, {{0, 1, 2}}, false, std::nanf("")));
+  EXPECT_NE(nan_x.find("non-finite"), std::string::npos) << nan_x;
+  std::string truncated = scanner_ply(false, {{0, 1, 2}, {1, 3, 2}}, true);
+  truncated.resize(truncated.size() - 5);
+  const std::string cut = message(truncated);
+  EXPECT_NE(cut.find("truncated"), std::string::npos) << cut;
 }
 
 /// Six vertices on a 2 x 3 grid; one strip 0 1 2 3 makes two triangles, the restart -1 separates

@@ -374,6 +374,27 @@ TEST(ClosestPointIndex, SameIndexWhateverTheThreadsOfTheBuild) {
   }
 }
 
+TEST(ClosestPointIndex, CornersThatAreFloatsGiveTheSameAnswers) {
+  // A leaf whose corners are all exactly floats (scans stored in float) keeps them as floats,
+  // half the bytes: the answers must not change. Every vertex rounded to float, then only those
+  // of one half of the sheet (leaves of both kinds side by side).
+  const TriangleMesh m = meshes::noisy_sheet(40, 2.5, 0.8, 0.15, 4);
+  TriangleMesh rounded = m;
+  rounded.V = m.V.cast<float>().cast<double>();
+  ASSERT_NE(rounded.V, m.V);
+  expect_matches_brute_force(rounded, queries(rounded, 1500, 4.0, 1.5, 41));
+  TriangleMesh half = m;
+  const double mid = 0.5 * (m.V.col(0).minCoeff() + m.V.col(0).maxCoeff());
+  for (Index i = 0; i < m.V.rows(); ++i) {
+    if (m.V(i, 0) < mid) half.V.row(i) = rounded.V.row(i);
+  }
+  expect_matches_brute_force(half, queries(half, 1500, 4.0, 1.5, 42));
+  // The parallel build sizes the blocks in a separate pass: the same index with more threads.
+  TriangleMesh big = meshes::noisy_sheet(220, 1.0, 0.4, 0.05, 31);
+  big.V = big.V.cast<float>().cast<double>();
+  expect_same_answers(ClosestPointIndex(big), ClosestPointIndex(big, 2), queries(big, 3000, 3.0, 1.0, 43));
+}
+
 TEST(ClosestPointIndex, ConcurrentQueriesAgree) {
   const TriangleMesh m = meshes::icosphere(4, 100.0);
   const ClosestPointIndex index(m);

@@ -5,13 +5,15 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <initializer_list>
 #include <limits>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "breastfit/core/errors.h"
-#include "breastfit/io/detail/file_bytes.h"
+#include "breastfit/io/detail/mapped_file.h"
 #include "breastfit/io/detail/mesh_arrays.h"
 #include "breastfit/io/detail/polygon_triangulation.h"
 #include "breastfit/io/detail/text.h"
@@ -224,6 +226,28 @@ void check_counts_against_size(const PlyHeader& header, std::uint64_t data_size,
 
 enum class Status { Ok, End, Bad };
 
+template <typename T>
+double load_as(const unsigned char* p) {
+  T v;
+  std::memcpy(&v, p, sizeof(T));
+  return static_cast<double>(v);
+}
+
+/// Reads one scalar of type t (native byte order) at p.
+inline double load_scalar(const unsigned char* p, PlyType t) {
+  switch (t) {
+    case PlyType::Int8: return load_as<std::int8_t>(p);
+    case PlyType::UInt8: return load_as<std::uint8_t>(p);
+    case PlyType::Int16: return load_as<std::int16_t>(p);
+    case PlyType::UInt16: return load_as<std::uint16_t>(p);
+    case PlyType::Int32: return load_as<std::int32_t>(p);
+    case PlyType::UInt32: return load_as<std::uint32_t>(p);
+    case PlyType::Float32: return load_as<float>(p);
+    case PlyType::Float64: return load_as<double>(p);
+  }
+  return 0.0;
+}
+
 class BinarySource {
  public:
   BinarySource(std::string_view data, bool big_endian)
@@ -238,56 +262,7 @@ class BinarySource {
     std::memcpy(b, p_, n);
     if (swap_) std::reverse(b, b + n);
     p_ += n;
-    switch (t) {
-      case PlyType::Int8: {
-        std::int8_t v;
-        std::memcpy(&v, b, 1);
-        out = v;
-        break;
-      }
-      case PlyType::UInt8: {
-        std::uint8_t v;
-        std::memcpy(&v, b, 1);
-        out = v;
-        break;
-      }
-      case PlyType::Int16: {
-        std::int16_t v;
-        std::memcpy(&v, b, 2);
-        out = v;
-        break;
-      }
-      case PlyType::UInt16: {
-        std::uint16_t v;
-        std::memcpy(&v, b, 2);
-        out = v;
-        break;
-      }
-      case PlyType::Int32: {
-        std::int32_t v;
-        std::memcpy(&v, b, 4);
-        out = v;
-        break;
-      }
-      case PlyType::UInt32: {
-        std::uint32_t v;
-        std::memcpy(&v, b, 4);
-        out = v;
-        break;
-      }
-      case PlyType::Float32: {
-        float v;
-        std::memcpy(&v, b, 4);
-        out = v;
-        break;
-      }
-      case PlyType::Float64: {
-        double v;
-        std::memcpy(&v, b, 8);
-        out = v;
-        break;
-      }
-    }
+    out = load_scalar(b, t);
     return Status::Ok;
   }
 
@@ -684,6 +659,123 @@ TriangleMesh read_body(Source& source, const PlyHeader& header, const std::strin
   return mesh;
 }
 
+
+/// The layout of most scanners' binary PLYs, read straight into the mesh (no per-value
+/// dispatch through a data source, no intermediate arrays): native byte order, a 'vertex'
+/// element of scalar properties followed by a 'face' element whose only property is a
+/// 'vertex_indices' list with a uchar count and int/uint indices. Returns nullopt when the file
+/// has another layout or anything unusual (a face that is not a triangle, an index out of range,
+/// a non-finite coordinate, truncated data): the general reader then reads it and reports any
+/// problem. When it returns a mesh, the mesh equals what the general reader gives.
+std::optional<TriangleMesh> read_simple_binary(const PlyHeader& header, std::string_view data) {
+  const PlyFormat native = std::endian::native == std::endian::little ? PlyFormat::BinaryLittle
+                                                                      : PlyFormat::BinaryBig;
+  if (header.format != native || header.elements.size() != 2) return std::nullopt;
+  const PlyElement& vertex = header.elements[0];
+  const PlyElement& face = header.elements[1];
+  if (vertex.name != "vertex" || face.name != "face" || vertex.count == 0 ||
+      vertex.count > static_cast<std::uint64_t>(std::numeric_limits<Index>::max()) ||
+      face.properties.size() != 1) {
+    return std::nullopt;
+  }
+  const PlyProperty& list = face.properties[0];
+  if (!list.is_list || list.count_type != PlyType::UInt8 ||
+      (list.type != PlyType::Int32 && list.type != PlyType::UInt32) ||
+      (list.name != "vertex_indices" && list.name != "vertex_index")) {
+    return std::nullopt;
+  }
+  std::vector<std::size_t> offset(vertex.properties.size());
+  std::size_t stride = 0;
+  for (std::size_t j = 0; j < vertex.properties.size(); ++j) {
+    if (vertex.properties[j].is_list) return std::nullopt;
+    offset[j] = stride;
+    stride += type_size(vertex.properties[j].type);
+  }
+  VertexRoles roles;
+  try {
+    roles = find_vertex_roles(vertex, "");
+  } catch (const IoError&) {
+    return std::nullopt;
+  }
+  const auto nv = static_cast<std::size_t>(vertex.count);
+  const auto nf = static_cast<std::size_t>(face.count);
+  constexpr std::size_t kFaceBytes = 1 + 3 * 4;
+  if (nv > data.size() / stride || nf > (data.size() - nv * stride) / kFaceBytes) {
+    return std::nullopt;
+  }
+  const auto* bytes = reinterpret_cast<const unsigned char*>(data.data());
+  const bool has_normals = roles.nx >= 0 && roles.ny >= 0 && roles.nz >= 0;
+  const bool has_colors = roles.r >= 0 && roles.g >= 0 && roles.b >= 0;
+  const bool has_uv = roles.u >= 0 && roles.v >= 0;
+  auto role = [&](int j) {
+    const auto k = static_cast<std::size_t>(j);
+    return std::pair<std::size_t, PlyType>(offset[k], vertex.properties[k].type);
+  };
+  // out (nv rows) = convert(type, value) of the vertex properties `cols` (offset, type), row by row.
+  auto gather = [&](auto& out, std::initializer_list<int> cols, auto convert) {
+    std::pair<std::size_t, PlyType> c[3];
+    int n = 0;
+    for (int j : cols) c[n++] = role(j);
+    out.resize(static_cast<Eigen::Index>(nv), n);
+    auto* dst = out.data();
+    for (std::size_t i = 0; i < nv; ++i) {
+      for (int k = 0; k < n; ++k) {
+        dst[static_cast<std::size_t>(n) * i + static_cast<std::size_t>(k)] =
+            convert(c[k].second, load_scalar(bytes + i * stride + c[k].first, c[k].second));
+      }
+    }
+  };
+  const auto as_is = [](PlyType, double v) { return v; };
+  TriangleMesh mesh;
+  const auto rows = static_cast<Eigen::Index>(nv);
+  {
+    const std::pair<std::size_t, PlyType> xyz[3] = {role(roles.x), role(roles.y), role(roles.z)};
+    mesh.V.resize(rows, 3);
+    double* V = mesh.V.data();
+    if (xyz[0].second == PlyType::Float32 && xyz[1].second == PlyType::Float32 &&
+        xyz[2].second == PlyType::Float32) {  // the usual case, without a switch per value
+      for (std::size_t i = 0; i < nv; ++i) {
+        const unsigned char* rec = bytes + i * stride;
+        for (int k = 0; k < 3; ++k) {
+          float c;
+          std::memcpy(&c, rec + xyz[k].first, 4);
+          V[3 * i + static_cast<std::size_t>(k)] = c;
+        }
+      }
+    } else {
+      gather(mesh.V, {roles.x, roles.y, roles.z}, as_is);
+    }
+    if (!mesh.V.allFinite()) return std::nullopt;
+  }
+  if (has_normals) {
+    gather(mesh.N, {roles.nx, roles.ny, roles.nz}, as_is);
+    if (!mesh.N.allFinite()) mesh.N.resize(0, 3);
+  }
+  if (has_colors) gather(mesh.C, {roles.r, roles.g, roles.b}, to_color_byte);
+  if (has_uv) {
+    gather(mesh.UV, {roles.u, roles.v}, as_is);
+    if (!mesh.UV.allFinite()) mesh.UV.resize(0, 2);
+  }
+  // Faces: triangles only; one with a repeated corner is dropped (as the triangulator does).
+  mesh.F.resize(static_cast<Eigen::Index>(nf), 3);
+  Index* F = mesh.F.data();
+  std::size_t kept = 0;
+  const unsigned char* rec = bytes + nv * stride;
+  for (std::size_t i = 0; i < nf; ++i, rec += kFaceBytes) {
+    if (rec[0] != 3) return std::nullopt;
+    std::uint32_t c[3];
+    std::memcpy(c, rec + 1, 12);
+    // A negative int32 index reads as a uint32 >= 2^31 > nv: out of range as well.
+    if (c[0] >= nv || c[1] >= nv || c[2] >= nv) return std::nullopt;
+    if (c[0] == c[1] || c[1] == c[2] || c[0] == c[2]) continue;
+    for (int k = 0; k < 3; ++k) F[3 * kept + static_cast<std::size_t>(k)] = static_cast<Index>(c[k]);
+    ++kept;
+  }
+  if (kept != nf) mesh.F.conservativeResize(static_cast<Eigen::Index>(kept), 3);
+  if (mesh.UV.rows() != 0) mesh.FUV = mesh.F;
+  return mesh;
+}
+
 }  // namespace
 
 TriangleMesh read_ply_from_memory(std::string_view bytes, const std::string& name) {
@@ -694,12 +786,14 @@ TriangleMesh read_ply_from_memory(std::string_view bytes, const std::string& nam
     AsciiSource source(data, header.lines + 1);
     return read_body(source, header, name);
   }
+  if (std::optional<TriangleMesh> mesh = read_simple_binary(header, data)) return std::move(*mesh);
   BinarySource source(data, header.format == PlyFormat::BinaryBig);
   return read_body(source, header, name);
 }
 
 TriangleMesh read_ply(const std::filesystem::path& path) {
-  return read_ply_from_memory(detail::read_file_bytes(path), path.string());
+  const detail::MappedFile file(path);
+  return read_ply_from_memory(file.bytes(), path.string());
 }
 
 }  // namespace breastfit::io

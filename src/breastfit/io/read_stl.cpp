@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "breastfit/core/errors.h"
-#include "breastfit/io/detail/file_bytes.h"
+#include "breastfit/io/detail/mapped_file.h"
 #include "breastfit/io/detail/mesh_arrays.h"
 #include "breastfit/io/detail/text.h"
 #include "breastfit/mesh/index_triangulation.h"
@@ -215,7 +215,8 @@ TriangleMesh read_stl_from_memory(std::string_view bytes, const std::string& nam
 }
 
 TriangleMesh read_stl(const std::filesystem::path& path) {
-  return read_stl_from_memory(detail::read_file_bytes(path), path.string());
+  const detail::MappedFile file(path);
+  return read_stl_from_memory(file.bytes(), path.string());
 }
 
 }  // namespace breastfit::io

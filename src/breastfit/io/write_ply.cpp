@@ -15,24 +15,8 @@ namespace {
 static_assert(std::endian::native == std::endian::little,
               "the binary PLY writer assumes a little-endian host");
 
-template <typename T>
-void put(std::string& out, T value) {
-  char b[sizeof(T)];
-  std::memcpy(b, &value, sizeof(T));
-  out.append(b, sizeof(T));
-}
-
-void put_real(std::string& out, double value, bool binary, bool use_double) {
-  if (binary) {
-    if (use_double) {
-      put(out, value);
-    } else {
-      put(out, static_cast<float>(value));
-    }
-  } else {
-    out +=
-        use_double ? detail::format_double(value) : detail::format_float(static_cast<float>(value));
-  }
+void put_text_real(std::string& out, double value, bool use_double) {
+  out += use_double ? detail::format_double(value) : detail::format_float(static_cast<float>(value));
 }
 
 }  // namespace
@@ -71,48 +55,74 @@ std::string write_ply_to_memory(const TriangleMesh& mesh, const MeshWriteOptions
   out.reserve(out.size() + per_vertex * static_cast<std::size_t>(mesh.V.rows()) +
               (binary ? 13 : 40) * static_cast<std::size_t>(mesh.F.rows()));
 
+  if (binary) {
+    // Sized once and filled through a pointer: no capacity check per value.
+    const std::size_t header = out.size();
+    out.resize(header + per_vertex * static_cast<std::size_t>(mesh.V.rows()) +
+               13 * static_cast<std::size_t>(mesh.F.rows()));
+    char* w = out.data() + header;
+    auto emit = [&w](auto value) {
+      std::memcpy(w, &value, sizeof(value));
+      w += sizeof(value);
+    };
+    auto emit_real = [&](double value) {
+      if (dbl) {
+        emit(value);
+      } else {
+        emit(static_cast<float>(value));
+      }
+    };
+    for (Eigen::Index i = 0; i < mesh.V.rows(); ++i) {
+      for (int k = 0; k < 3; ++k) emit_real(mesh.V(i, k));
+      if (normals) {
+        for (int k = 0; k < 3; ++k) emit_real(mesh.N(i, k));
+      }
+      if (colors) {
+        for (int k = 0; k < 3; ++k) emit(mesh.C(i, k));
+      }
+      if (uv) {
+        for (int k = 0; k < 2; ++k) emit_real(mesh.UV(i, k));
+      }
+    }
+    for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
+      emit(std::uint8_t{3});
+      for (int k = 0; k < 3; ++k) emit(static_cast<std::int32_t>(mesh.F(f, k)));
+    }
+    return out;
+  }
   for (Eigen::Index i = 0; i < mesh.V.rows(); ++i) {
     bool first = true;
     auto sep = [&] {
-      if (!binary && !first) out += ' ';
+      if (!first) out += ' ';
       first = false;
     };
     for (int k = 0; k < 3; ++k) {
       sep();
-      put_real(out, mesh.V(i, k), binary, dbl);
+      put_text_real(out, mesh.V(i, k), dbl);
     }
     if (normals) {
       for (int k = 0; k < 3; ++k) {
         sep();
-        put_real(out, mesh.N(i, k), binary, dbl);
+        put_text_real(out, mesh.N(i, k), dbl);
       }
     }
     if (colors) {
       for (int k = 0; k < 3; ++k) {
         sep();
-        if (binary) {
-          put(out, mesh.C(i, k));
-        } else {
-          out += std::to_string(static_cast<int>(mesh.C(i, k)));
-        }
+        out += std::to_string(static_cast<int>(mesh.C(i, k)));
       }
     }
     if (uv) {
       for (int k = 0; k < 2; ++k) {
         sep();
-        put_real(out, mesh.UV(i, k), binary, dbl);
+        put_text_real(out, mesh.UV(i, k), dbl);
       }
     }
-    if (!binary) out += '\n';
+    out += '\n';
   }
   for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) {
-    if (binary) {
-      put(out, std::uint8_t{3});
-      for (int k = 0; k < 3; ++k) put(out, static_cast<std::int32_t>(mesh.F(f, k)));
-    } else {
-      out += "3 " + std::to_string(mesh.F(f, 0)) + " " + std::to_string(mesh.F(f, 1)) + " " +
-             std::to_string(mesh.F(f, 2)) + "\n";
-    }
+    out += "3 " + std::to_string(mesh.F(f, 0)) + " " + std::to_string(mesh.F(f, 1)) + " " +
+           std::to_string(mesh.F(f, 2)) + "\n";
   }
   return out;
 }

@@ -46,7 +46,7 @@ PreparedScan prepare_scan(const TriangleMesh& scan, const std::string& name, std
   out.units_detected = !requested;
   out.extent = mesh::max_extent(scan.V);
   out.to_mm = mesh::to_mm_factor(out.units);
-  const double extent_mm = mesh::max_extent(scan.V) * out.to_mm;
+  const double extent_mm = out.extent * out.to_mm;
   if (extent_mm < 150.0 || extent_mm > 1500.0) {
     std::ostringstream s;
     s << name << ": the scan spans " << extent_mm << " mm in " << mesh::units_name(out.units)

@@ -15,6 +15,7 @@
 #include "breastfit/core/errors.h"
 #include "breastfit/mesh/normals.h"
 #include "breastfit/spatial/detail/bvh.h"
+#include "breastfit/spatial/detail/bvh4.h"
 #include "breastfit/spatial/detail/parallel_for.h"
 #include "breastfit/spatial/detail/point_triangle_kernel.h"
 #include "breastfit/spatial/detail/triangle_tables.h"
@@ -28,12 +29,15 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr int kMaxLeafSize = 4;
 
 /// A leaf's data is one self-contained block of whole 64-byte lines: this header, then the
-/// leaf's distinct vertices (3 doubles each). Compared with a vertex-index indirection this
-/// needs no second memory hop, and compared with 3 corners per triangle it stores shared
-/// corners once (the query cost on a large mesh is dominated by cache misses).
+/// leaf's distinct vertices (3 doubles each, or 3 floats each when every coordinate of the leaf
+/// is exactly a float — scans stored in float — which loses nothing and takes half the bytes).
+/// Compared with a vertex-index indirection this needs no second memory hop, and compared with
+/// 3 corners per triangle it stores shared corners once (the query cost on a large mesh is
+/// dominated by cache misses).
 struct LeafHeader {
   std::uint8_t count;                        ///< triangles in the leaf
   std::uint8_t num_vertices;                 ///< distinct corners stored after the header
+  std::uint8_t float_coords;                 ///< 1: the corners are stored as floats (exact)
   std::uint8_t flags[kMaxLeafSize];          ///< detail::kFlag* per triangle
   std::uint8_t corner[kMaxLeafSize][3];      ///< index into the block's vertices
   std::int32_t face[kMaxLeafSize];           ///< original face index
@@ -57,40 +61,29 @@ struct Best {
   }
 };
 
-/// Lower bound on the squared distance from q to a node's float box (may overestimate the true
-/// value by float rounding; the pruning threshold carries a matching slack).
-inline float box_sq_dist(const detail::BvhNode& n, const float* q) {
-  const float dx = std::max(std::max(n.lo[0] - q[0], q[0] - n.hi[0]), 0.0f);
-  const float dy = std::max(std::max(n.lo[1] - q[1], q[1] - n.hi[1]), 0.0f);
-  const float dz = std::max(std::max(n.lo[2] - q[2], q[2] - n.hi[2]), 0.0f);
-  return dx * dx + dy * dy + dz * dz;
-}
-
-/// box_sq_dist() of both nodes of a child pair (nodes pair[0] and pair[1], adjacent and
-/// 32-byte aligned) at once.
-inline void pair_sq_dist(const detail::BvhNode* pair, const float* q, float& d0, float& d1) {
+/// Lower bounds on the squared distances from q to the four child boxes of a wide node (lane i:
+/// child i; an empty slot gives +inf). Float: may overestimate the true values by rounding; the
+/// pruning threshold carries a matching slack.
+inline void quad_sq_dist(const detail::Bvh4Node& n, const float* q, float out[4]) {
 #if defined(__SSE2__)
-  // Each node is {lo.xyz, first} {hi.xyz, count}: mask the integer lane before any arithmetic.
-  const __m128 mask = _mm_castsi128_ps(_mm_set_epi32(0, -1, -1, -1));
-  const __m128 q4 = _mm_set_ps(0.0f, q[2], q[1], q[0]);
-  const auto* f = reinterpret_cast<const float*>(pair);
-  const __m128 lo0 = _mm_and_ps(_mm_load_ps(f), mask);
-  const __m128 hi0 = _mm_and_ps(_mm_load_ps(f + 4), mask);
-  const __m128 lo1 = _mm_and_ps(_mm_load_ps(f + 8), mask);
-  const __m128 hi1 = _mm_and_ps(_mm_load_ps(f + 12), mask);
   const __m128 zero = _mm_setzero_ps();
-  __m128 a = _mm_max_ps(_mm_max_ps(_mm_sub_ps(lo0, q4), _mm_sub_ps(q4, hi0)), zero);
-  __m128 b = _mm_max_ps(_mm_max_ps(_mm_sub_ps(lo1, q4), _mm_sub_ps(q4, hi1)), zero);
-  a = _mm_mul_ps(a, a);
-  b = _mm_mul_ps(b, b);
-  // Horizontal sums of a and b: lanes 0 and 1 of t.
-  __m128 t = _mm_add_ps(_mm_unpacklo_ps(a, b), _mm_unpackhi_ps(a, b));  // a0+a2 b0+b2 a1+a3 b1+b3
-  t = _mm_add_ps(t, _mm_movehl_ps(t, t));
-  d0 = _mm_cvtss_f32(t);
-  d1 = _mm_cvtss_f32(_mm_shuffle_ps(t, t, 1));
+  __m128 sum = zero;
+  for (int k = 0; k < 3; ++k) {
+    const __m128 qk = _mm_set1_ps(q[k]);
+    const __m128 d = _mm_max_ps(
+        _mm_max_ps(_mm_sub_ps(_mm_load_ps(n.lo[k]), qk), _mm_sub_ps(qk, _mm_load_ps(n.hi[k]))), zero);
+    sum = _mm_add_ps(sum, _mm_mul_ps(d, d));
+  }
+  _mm_storeu_ps(out, sum);
 #else
-  d0 = box_sq_dist(pair[0], q);
-  d1 = box_sq_dist(pair[1], q);
+  for (int i = 0; i < 4; ++i) {
+    float sum = 0.0f;
+    for (int k = 0; k < 3; ++k) {
+      const float d = std::max(std::max(n.lo[k][i] - q[k], q[k] - n.hi[k][i]), 0.0f);
+      sum += d * d;
+    }
+    out[i] = sum;
+  }
 #endif
 }
 
@@ -100,9 +93,12 @@ double ClosestPoint::distance() const { return std::sqrt(sq_dist); }
 
 struct ClosestPointIndex::Impl {
   TriangleMesh mesh;
-  // Tree nodes; a leaf's `first` is the index of its block in `blocks` and `count` the
-  // number of 64-byte lines of the block.
+  // Binary tree nodes (during the build only); a leaf's `first` is the index of its block in
+  // `blocks` and `count` the number of 64-byte lines of the block.
   detail::BvhNodes nodes;
+  // The tree the queries walk: the binary tree collapsed to four children per node (a leaf
+  // slot's ref is ~(first line of its block), its count the block's lines).
+  detail::Bvh4Nodes wide;
   std::vector<CacheLine, detail::UninitCacheAlignedAllocator<CacheLine>> blocks;
   std::vector<std::uint8_t> face_flags;    // by face: detail::kFlag*
   std::vector<std::uint8_t> vertex_boundary;  // by vertex: 1 on an open-boundary edge
@@ -126,6 +122,8 @@ struct ClosestPointIndex::Impl {
     }
     build_leaf_blocks(prims, threads);
     detail::fit_inner_boxes(nodes);
+    wide = detail::collapse_to_bvh4(nodes);
+    detail::BvhNodes().swap(nodes);  // not needed for queries
   }
 
   /// Writes leaf node `n`'s block at lines [line, line + lines) of `blocks` (header `h`, then the
@@ -139,11 +137,16 @@ struct ClosestPointIndex::Impl {
     std::memset(base, 0, kHeaderBytes);
     std::memcpy(base, &h, sizeof(LeafHeader));
     auto* coords = reinterpret_cast<double*>(base + kHeaderBytes);
+    auto* float_coords = reinterpret_cast<float*>(base + kHeaderBytes);
     double lo[3] = {kInf, kInf, kInf}, hi[3] = {-kInf, -kInf, -kInf};
     for (int j = 0; j < nv; ++j) {
       const double* p = V + 3 * static_cast<std::ptrdiff_t>(verts[j]);
       for (int k = 0; k < 3; ++k) {
-        coords[3 * j + k] = p[k];
+        if (h.float_coords) {
+          float_coords[3 * j + k] = static_cast<float>(p[k]);
+        } else {
+          coords[3 * j + k] = p[k];
+        }
         lo[k] = std::min(lo[k], p[k]);
         hi[k] = std::max(hi[k], p[k]);
       }
@@ -168,8 +171,21 @@ struct ClosestPointIndex::Impl {
     return h;
   }
 
-  static std::size_t block_lines(int num_vertices) {
-    return (kHeaderBytes + 24 * static_cast<std::size_t>(num_vertices) + 63) / 64;
+  static std::size_t block_lines(int num_vertices, bool float_coords) {
+    const std::size_t bytes_per_vertex = float_coords ? 12 : 24;
+    return (kHeaderBytes + bytes_per_vertex * static_cast<std::size_t>(num_vertices) + 63) / 64;
+  }
+
+  /// Whether every coordinate of the vertices verts[0, nv) is exactly a float.
+  bool float_exact(const Index* verts, int nv) const {
+    const double* V = mesh.V.data();
+    for (int j = 0; j < nv; ++j) {
+      const double* p = V + 3 * static_cast<std::ptrdiff_t>(verts[j]);
+      for (int k = 0; k < 3; ++k) {
+        if (static_cast<double>(static_cast<float>(p[k])) != p[k]) return false;
+      }
+    }
+    return true;
   }
 
   /// Replaces each leaf's slot range by its block (see LeafHeader) and sets its box. A leaf's
@@ -206,8 +222,10 @@ struct ClosestPointIndex::Impl {
     std::vector<std::size_t> start(leaves.size() + 1, 0);
     detail::parallel_for_chunks(leaves.size(), kLeafChunk, threads, [&](std::size_t, std::size_t b, std::size_t e) {
       Index verts[3 * kMaxLeafSize];
-      for (std::size_t l = b; l < e; ++l)
-        start[l + 1] = block_lines(corners(nodes[static_cast<std::size_t>(leaves[l])], verts, nullptr));
+      for (std::size_t l = b; l < e; ++l) {
+        const int nv = corners(nodes[static_cast<std::size_t>(leaves[l])], verts, nullptr);
+        start[l + 1] = block_lines(nv, float_exact(verts, nv));
+      }
     });
     for (std::size_t l = 0; l < leaves.size(); ++l) start[l + 1] += start[l];
     blocks.resize(start.back());  // uninitialised: every line is written below
@@ -218,6 +236,7 @@ struct ClosestPointIndex::Impl {
         LeafHeader h = leaf_header(n, prims);
         const int nv = corners(n, verts, &h);
         h.num_vertices = static_cast<std::uint8_t>(nv);
+        h.float_coords = float_exact(verts, nv) ? 1 : 0;
         write_leaf_block(n, h, verts, nv, start[l], start[l + 1] - start[l]);
       }
     });
@@ -229,7 +248,7 @@ struct ClosestPointIndex::Impl {
     // in order.
     std::size_t max_lines = 0;
     for (const detail::BvhNode& n : nodes) {
-      if (n.is_leaf()) max_lines += block_lines(3 * n.count);
+      if (n.is_leaf()) max_lines += block_lines(3 * n.count, false);
     }
     blocks.resize(max_lines);
     std::size_t used = 0;
@@ -262,7 +281,8 @@ struct ClosestPointIndex::Impl {
         }
       }
       h.num_vertices = static_cast<std::uint8_t>(nv);
-      const std::size_t lines = block_lines(nv);
+      h.float_coords = float_exact(verts, nv) ? 1 : 0;
+      const std::size_t lines = block_lines(nv, h.float_coords != 0);
       write_leaf_block(n, h, verts, nv, used, lines);
       used += lines;
     }
@@ -289,87 +309,112 @@ struct ClosestPointIndex::Impl {
     }
   }
 
-  /// Branch-and-bound descent: visits every node whose box may hold a triangle at least as
-  /// close as the current best (nearest child first), so the answer is exact.
+  /// Tests the triangles of the leaf block starting at `line`.
+  void search_leaf(const double* q, std::int32_t line, Best& best, float& thr,
+                   double slack) const {
+    const unsigned char* base = blocks[static_cast<std::size_t>(line)].bytes;
+    const auto* h = reinterpret_cast<const LeafHeader*>(base);
+    const double* coords = reinterpret_cast<const double*>(base + kHeaderBytes);
+    double widened[9 * kMaxLeafSize];
+    if (h->float_coords) {  // exact: the stored floats are the mesh's doubles
+      const auto* f = reinterpret_cast<const float*>(base + kHeaderBytes);
+      for (int j = 0; j < 3 * h->num_vertices; ++j) widened[j] = f[j];
+      coords = widened;
+    }
+    for (int i = 0; i < h->count; ++i) {
+      double bary[3];
+      ClosestFeature feature;
+      const double s = detail::closest_point_on_triangle_kernel(
+          q, coords + 3 * h->corner[i][0], coords + 3 * h->corner[i][1],
+          coords + 3 * h->corner[i][2], (h->flags[i] & detail::kFlagDegenerate) != 0, bary,
+          feature);
+      if (best.offer(s, h->face[i])) {
+        best.sq_dist = s;
+        best.face = h->face[i];
+        best.found = true;
+        std::copy(bary, bary + 3, best.bary);
+        best.feature = feature;
+        thr = threshold(s, slack);
+      }
+    }
+  }
+
+  /// The float pruning threshold for a best squared distance `sq` (see docs/SPATIAL.md
+  /// "Exactness"): a box is skipped only when it provably cannot hold a triangle at least as
+  /// close.
+  static float threshold(double sq, double slack) {
+    if (!(sq < kInf)) return std::numeric_limits<float>::infinity();
+    const double r = std::sqrt(sq) + slack;
+    return static_cast<float>(r * r * (1.0 + 1e-5));
+  }
+
+  /// Branch-and-bound descent of the four-wide tree: visits every child whose box may hold a
+  /// triangle at least as close as the current best (nearest first), so the answer is exact.
   void search(const double* q, Best& best) const {
-    const detail::BvhNode* nodes = this->nodes.data();
+    if (wide.empty()) return;
+    const detail::Bvh4Node* nodes = wide.data();
     const float qf[3] = {static_cast<float>(q[0]), static_cast<float>(q[1]),
                          static_cast<float>(q[2])};
     // Box distances are computed in float from a rounded query: allow for both errors.
     const double qmax = std::max({std::abs(q[0]), std::abs(q[1]), std::abs(q[2]), 1.0});
     const double slack = 4e-7 * qmax;
-    auto threshold = [&](double sq) -> float {
-      if (!(sq < kInf)) return std::numeric_limits<float>::infinity();
-      const double r = std::sqrt(sq) + slack;
-      return static_cast<float>(r * r * (1.0 + 1e-5));
-    };
-    float thr = threshold(best.sq_dist);
-    if (box_sq_dist(nodes[0], qf) > thr) return;
+    float thr = threshold(best.sq_dist, slack);
 
     struct Entry {
-      std::int32_t node;
+      std::int32_t ref;
       float sq;
     };
-    auto prefetch = [&](const detail::BvhNode& c) {
-      if (c.is_leaf()) {
-        const unsigned char* p = blocks[c.first].bytes;
-        for (std::int32_t l = 0; l < c.count; ++l) __builtin_prefetch(p + 64 * l);
+    // Start fetching what a child will read (memory-level parallelism: on a large mesh the
+    // queries are bound by cache misses, not arithmetic).
+    auto prefetch = [&](std::int32_t ref, std::int32_t lines) {
+      if (ref < 0) {
+        const unsigned char* p = blocks[static_cast<std::size_t>(~ref)].bytes;
+        for (std::int32_t l = 0; l < lines; ++l) __builtin_prefetch(p + 64 * l);
       } else {
-        __builtin_prefetch(nodes + c.first);
+        __builtin_prefetch(nodes + ref);
+        __builtin_prefetch(reinterpret_cast<const unsigned char*>(nodes + ref) + 64);
       }
     };
-    Entry stack[detail::kBvhMaxStack];
+    Entry stack[detail::kBvh4MaxStack];
     int sp = 0;
-    std::int32_t node = 0;
+    std::int32_t ref = 0;  // the root
     for (;;) {
-      const detail::BvhNode& n = nodes[node];
-      if (!n.is_leaf()) {
-        const std::int32_t c0 = n.first;
-        float d0, d1;
-        pair_sq_dist(nodes + c0, qf, d0, d1);
-        std::int32_t near = c0, far = c0 + 1;
-        if (d1 < d0) {
-          std::swap(d0, d1);
-          std::swap(near, far);
-        }
-        if (d0 <= thr) {
-          // Start fetching what the children will read (memory-level parallelism: on a large
-          // mesh the queries are bound by cache misses, not arithmetic).
-          prefetch(nodes[near]);
-          if (d1 <= thr) {
-            prefetch(nodes[far]);
-            stack[sp++] = {far, d1};
+      if (ref >= 0) {
+        const detail::Bvh4Node& n = nodes[ref];
+        float d[4];
+        quad_sq_dist(n, qf, d);
+        // The children within the threshold, nearest first (insertion sort; ties keep slot
+        // order). Empty slots are last and never taken.
+        int slot[4];
+        int m = 0;
+        for (int i = 0; i < 4 && n.ref[i] != detail::kBvh4Empty; ++i) {
+          if (!(d[i] <= thr)) continue;
+          int j = m++;
+          while (j > 0 && d[slot[j - 1]] > d[i]) {
+            slot[j] = slot[j - 1];
+            --j;
           }
-          node = near;
+          slot[j] = i;
+        }
+        if (m > 0) {
+          for (int j = m - 1; j > 0; --j) {  // farthest pushed first, popped last
+            const int i = slot[j];
+            prefetch(n.ref[i], n.count[i]);
+            stack[sp++] = {n.ref[i], d[i]};
+          }
+          ref = n.ref[slot[0]];
+          prefetch(ref, n.count[slot[0]]);
           continue;
         }
       } else {
-        const unsigned char* base = blocks[n.first].bytes;
-        const auto* h = reinterpret_cast<const LeafHeader*>(base);
-        const auto* coords = reinterpret_cast<const double*>(base + kHeaderBytes);
-        for (int i = 0; i < h->count; ++i) {
-          double bary[3];
-          ClosestFeature feature;
-          const double s = detail::closest_point_on_triangle_kernel(
-              q, coords + 3 * h->corner[i][0], coords + 3 * h->corner[i][1],
-              coords + 3 * h->corner[i][2], (h->flags[i] & detail::kFlagDegenerate) != 0, bary,
-              feature);
-          if (best.offer(s, h->face[i])) {
-            best.sq_dist = s;
-            best.face = h->face[i];
-            best.found = true;
-            std::copy(bary, bary + 3, best.bary);
-            best.feature = feature;
-            thr = threshold(s);
-          }
-        }
+        search_leaf(q, ~ref, best, thr, slack);
       }
-      // Pop the next node that may still hold a closer triangle.
+      // Pop the next child that may still hold a closer triangle.
       for (;;) {
         if (sp == 0) return;
         const Entry& e = stack[--sp];
         if (e.sq <= thr) {
-          node = e.node;
+          ref = e.ref;
           break;
         }
       }

@@ -9,7 +9,7 @@
 
 namespace breastfit::io::detail {
 
-std::string read_file_bytes(const std::filesystem::path& path, std::string_view what) {
+void check_readable_file(const std::filesystem::path& path, std::string_view what) {
   const std::string name = path.string();
   std::error_code ec;
   const auto status = std::filesystem::status(path, ec);
@@ -22,6 +22,11 @@ std::string read_file_bytes(const std::filesystem::path& path, std::string_view 
   if (!std::filesystem::is_regular_file(status)) {
     throw IoError(name, "is not a regular file");
   }
+}
+
+std::string read_file_bytes(const std::filesystem::path& path, std::string_view what) {
+  const std::string name = path.string();
+  check_readable_file(path, what);
   std::ifstream in(path, std::ios::binary);
   if (!in) {
     throw IoError(name, std::string("cannot open for reading (") + std::strerror(errno) + ")");
