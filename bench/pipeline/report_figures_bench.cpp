@@ -56,6 +56,14 @@ void BM_RenderOverlay(benchmark::State& state) {
 }
 BENCHMARK(BM_RenderOverlay)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
+// The preparation before any overlay figure: the scan cropped near the fit, its normals, the
+// drawings and landmarks (one scene).
+void BM_OverlayScene(benchmark::State& state) {
+  auto& f = fixture();
+  for (auto _ : state) benchmark::DoNotOptimize(pipeline::overlay_scene(f.result).meshes.size());
+}
+BENCHMARK(BM_OverlayScene)->Unit(benchmark::kMillisecond);
+
 void BM_EncodeFrontPng(benchmark::State& state) {
   auto& f = fixture();
   const render::Image& img = f.figures.figures.front().image;

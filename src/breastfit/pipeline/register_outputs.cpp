@@ -1,6 +1,7 @@
 #include "breastfit/pipeline/register_outputs.h"
 
 #include <fstream>
+#include <future>
 #include <system_error>
 
 #include <nlohmann/json.hpp>
@@ -56,6 +57,21 @@ void write_register_outputs(const fs::path& dir, const RegisterResult& r, const 
   check_output_dir(dir, force, protected_paths);
   io::OutputSet set(dir, register_output_names(), "report.json");
 
+  // report.html (rendering its figures is most of the cost) is made on its own thread while this
+  // one writes the other files; the bytes are the same either way. Should a write below throw,
+  // the future's destructor waits for the report before the staging directory goes.
+  std::future<void> report;
+  bool report_inline = false;
+  if (options.report_html) {
+    const fs::path html = set.path("report.html");
+    try {
+      report = std::async(std::launch::async,
+                          [&r, &model, &options, html] { write_report_html(html, r, model.name, options.figures); });
+    } catch (const std::system_error&) {  // no thread to be had: written here, after the others
+      report_inline = true;
+    }
+  }
+
   const double from_mm = 1.0 / r.scan.to_mm;
   TriangleMesh fitted = r.fitted_mm;
   fitted.V *= from_mm;
@@ -86,7 +102,8 @@ void write_register_outputs(const fs::path& dir, const RegisterResult& r, const 
                                            r.fit.detail_offsets.data() + r.fit.detail_offsets.size())}};
   write_json(set.path("params.json"), params);
   write_json(set.path("report.json"), report_json(r));
-  if (options.report_html) write_report_html(set.path("report.html"), r, model.name, options.figures);
+  if (report_inline) write_report_html(set.path("report.html"), r, model.name, options.figures);
+  if (report.valid()) report.get();  // rethrows the report's error
   set.commit();  // without report.html, the previous run's report.html goes
 }
 

@@ -30,7 +30,8 @@ struct RegisterOutputOptions {
 /// Creates `dir` if needed and writes the outputs as one set (io/output_set.h): all files are
 /// written next to `dir` first and moved in together, report.json last; an output of the
 /// previous run that this run does not write (report.html without options.report_html) is
-/// removed. Other files in `dir` are never touched.
+/// removed. Other files in `dir` are never touched. report.html is made on a second thread while
+/// the other files are written (the same bytes as made alone).
 /// \param force      replace existing output files (otherwise an existing one is an error)
 /// \param protected_paths  files that must never be overwritten (the inputs), even with force
 /// \throws IoError when a file exists without `force`, would overwrite an input, or cannot be written
