@@ -31,7 +31,7 @@ class PoseEvaluator {
   const RiggedModel& model() const { return model_; }
   const ParamLayout& layout() const { return layout_; }
 
-  /// Poses all vertices for `params`.
+  /// Poses all vertices for `params` (free when they are bit for bit the current ones).
   void set_params(const PoseParams& params);
   const PoseParams& params() const { return params_; }
 
