@@ -63,7 +63,8 @@ PoseEvaluator::PoseEvaluator(const RiggedModel& model) : model_(model), layout_(
   std::vector<int> fill(shape_ptr_.begin(), shape_ptr_.end() - 1);
   for (int k = 0; k < model.num_blendshapes(); ++k) {
     const auto& verts = model.blendshapes[k].vertices;
-    for (size_t r = 0; r < verts.size(); ++r) shape_entries_[fill[verts[r]]++] = {k, static_cast<int>(r)};
+    for (size_t r = 0; r < verts.size(); ++r)
+      shape_entries_[fill[verts[r]]++] = {k, model.blendshapes[k].displacements.row(r).transpose()};
   }
   bone_linear_.resize(model.bones.size());
   bone_scale_axes_.resize(model.bones.size());
@@ -171,9 +172,9 @@ void PoseEvaluator::vertex_jacobian(Index i, PointJacobian& out) const {
   const Mat3& GA = vertex_linear_[i];
   const int base = layout_.blendshape_offset(0);
   for (int e = shape_ptr_[i]; e < shape_ptr_[i + 1]; ++e) {
-    const auto [k, r] = shape_entries_[e];
-    out.params.push_back(base + k);
-    out.columns.push_back(GA * model_.blendshapes[k].displacements.row(r).transpose());
+    const ShapeEntry& entry = shape_entries_[e];
+    out.params.push_back(base + entry.shape);
+    out.columns.push_back(GA * entry.displacement);
   }
 }
 
