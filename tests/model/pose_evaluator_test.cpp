@@ -198,6 +198,29 @@ TEST_F(PoseEvaluatorTest, NormalsPointOutwardAtRest) {
   }
 }
 
+TEST_F(PoseEvaluatorTest, SettingParamsAgainKeepsThePoseAndAnyChangeReposes) {
+  const PoseParams a = test::random_toy_pose(model, 4);
+  PoseEvaluator e(model);
+  e.set_params(a);
+  const Points posed_a = e.vertices();
+  e.set_params(a);  // the same bits: the pose is kept
+  EXPECT_EQ(e.vertices(), posed_a);
+  // A change of any kind of parameter gives the pose of the new parameters.
+  std::vector<PoseParams> changed(5, a);
+  changed[0].alpha[changed[0].alpha.size() - 1] += 0.5;
+  changed[1].global.scale *= 1.01;
+  changed[2].bones.back().translation.x() += 3.0;
+  changed[3].bones.front().scale.z() *= 1.1;
+  changed[4].global.rotation = Quat(Eigen::AngleAxisd(0.2, Vec3::UnitX())) * a.global.rotation;
+  for (size_t k = 0; k < changed.size(); ++k) {
+    e.set_params(changed[k]);
+    EXPECT_EQ(e.vertices(), pose_vertices(model, changed[k])) << "change " << k;
+    EXPECT_GT((e.vertices() - posed_a).cwiseAbs().maxCoeff(), 1e-6) << "change " << k;
+    e.set_params(a);
+    EXPECT_EQ(e.vertices(), posed_a) << "back from change " << k;
+  }
+}
+
 TEST_F(PoseEvaluatorTest, RejectsMismatchedParams) {
   PoseEvaluator e(model);
   PoseParams p = PoseParams::identity(model);

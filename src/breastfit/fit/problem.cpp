@@ -26,6 +26,12 @@ TermContext Problem::context() const {
 }
 
 void Problem::update_correspondences(double max_dist, int stride, bool with_reverse) {
+  const double sign = scan_.normal_sign();
+  if (pairs_key_ && pairs_key_->max_distance_mm == max_dist && pairs_key_->stride == stride &&
+      pairs_key_->with_reverse == with_reverse && pairs_key_->normal_sign == sign &&
+      pairs_key_->vertices == ev_.vertices())
+    return;
+  pairs_key_ = PairsKey{ev_.vertices(), max_dist, sign, stride, with_reverse};
   const Points N = mesh::vertex_normals(ev_.vertices(), model_.rest.F);
   pairs_ = find_correspondences(ev_.vertices(), N, scan_, options_.correspondences, max_dist, stride, &stats_,
                                 &hints_, options_.threads);
@@ -37,6 +43,7 @@ void Problem::update_correspondences(double max_dist, int stride, bool with_reve
 }
 
 void Problem::clear_correspondences() {
+  pairs_key_.reset();
   pairs_.clear();
   reverse_pairs_.clear();
   stats_ = CorrespondenceStats{};

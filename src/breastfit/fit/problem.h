@@ -3,6 +3,7 @@
 /// at the evaluator's current parameters, with their Gauss–Newton normal equations. The problem
 /// owns what the terms read (correspondences, landmarks) and re-chooses it per outer iteration.
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "breastfit/fit/correspondences.h"
@@ -28,8 +29,12 @@ class Problem {
   const FitOptions& options() const { return options_; }
   ScanTarget& scan() { return scan_; }
 
-  /// Recomputes correspondences at the evaluator's current pose (every `stride`-th vertex).
+  /// Recomputes correspondences at the evaluator's current pose (every `stride`-th vertex). A call
+  /// with the same posed vertices and arguments as the last one keeps the pairs it found (they
+  /// would be the same: e.g. the final state after the landmark predictions).
   void update_correspondences(double max_distance_mm, int stride, bool with_reverse);
+  /// The warm starts of the model → scan searches (per vertex; the last face found, or −1).
+  const std::vector<Index>& correspondence_hints() const { return hints_; }
   /// Drops all correspondences (stages that use landmarks and priors only).
   void clear_correspondences();
   /// Lets every term re-choose what it holds fixed (EnergyTerm::update) at the current pose;
@@ -74,6 +79,14 @@ class Problem {
   std::vector<ReverseCorrespondence> reverse_pairs_;
   CorrespondenceStats stats_, reverse_stats_;
   std::vector<Index> hints_, reverse_hints_;  // warm starts of the closest-point searches
+  // What the current pairs were found for (update_correspondences' memo; empty: none).
+  struct PairsKey {
+    Points vertices;
+    double max_distance_mm = 0, normal_sign = 0;
+    int stride = 0;
+    bool with_reverse = false;
+  };
+  std::optional<PairsKey> pairs_key_;
 };
 
 }  // namespace breastfit::fit

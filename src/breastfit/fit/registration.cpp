@@ -424,9 +424,12 @@ void finish_fit(const model::RiggedModel& model, ScanTarget& scan, Problem& prob
   result.model_vertices = result.vertices;
   if (options.detail.enabled && summary.usable()) {
     phase.reset();
+    // The final pairs above are the detail's first-pass pairs when the thresholds agree (default).
+    const DetailFirstPass final_pairs{problem.pairs(), problem.correspondence_hints()};
+    const bool same_pairs = options.detail.max_distance_mm == options.correspondences.max_distance_end_mm;
     const SurfaceDetail d =
         fit_surface_detail(result.vertices, model.rest.F, scan, options.correspondences, options.detail,
-                           options.threads);
+                           options.threads, same_pairs ? &final_pairs : nullptr);
     result.vertices = d.vertices;
     result.detail_offsets = d.offsets;
     summary.detail = {true, d.kept, d.mean_abs_mm, d.max_abs_mm};

@@ -33,7 +33,7 @@ Points apply_surface_detail(const Points& V, const Triangles& F, const Eigen::Ve
 
 SurfaceDetail fit_surface_detail(const Points& V, const Triangles& F, const ScanTarget& scan,
                                  const CorrespondenceOptions& correspondences, const SurfaceDetailOptions& o,
-                                 int threads) {
+                                 int threads, const DetailFirstPass* first) {
   const Index n = V.rows();
   SurfaceDetail out;
   out.offsets = Eigen::VectorXd::Zero(n);
@@ -61,11 +61,16 @@ SurfaceDetail fit_surface_detail(const Points& V, const Triangles& F, const Scan
   // The pairs' own IRLS weights (of the distance before any offset) are not used: the weights
   // below come from the residual the previous pass left.
   std::vector<Index> hints(n, -1);
+  if (first && static_cast<Index>(first->hints.size()) == n) hints = first->hints;
   Eigen::VectorXd h = Eigen::VectorXd::Zero(n);
   for (int pass = 0; pass < o.passes; ++pass) {
-    const Points Vd = displaced(V, N, h);
-    CorrespondenceStats st;
-    const auto pairs = find_correspondences(Vd, N, scan, correspondences, o.max_distance_mm, 1, &st, &hints, threads);
+    std::vector<Correspondence> searched;
+    if (!(first && pass == 0)) {
+      CorrespondenceStats st;
+      searched = find_correspondences(displaced(V, N, h), N, scan, correspondences, o.max_distance_mm, 1, &st, &hints,
+                                      threads);
+    }
+    const std::vector<Correspondence>& pairs = first && pass == 0 ? first->pairs : searched;
     Eigen::VectorXd diag = base_diag;
     Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n);
     for (const auto& c : pairs) {
@@ -78,7 +83,7 @@ SurfaceDetail fit_surface_detail(const Points& V, const Triangles& F, const Scan
       diag[c.vertex] += w;
       rhs[c.vertex] += w * r;
     }
-    out.kept = st.kept;
+    out.kept = static_cast<int>(pairs.size());
     for (Index i = 0; i < n; ++i) A.coeffRef(i, i) = diag[i];
     solver.factorize(A);
     if (solver.info() != Eigen::Success) break;  // cannot happen (A is SPD for ε > 0); keep the last offsets

@@ -13,7 +13,10 @@
 /// correspondence (holes, the back) are filled in smoothly from their neighbours and fade to 0.
 /// Offsets move vertices only along the normal, so material points (landmarks, drawings) keep
 /// their place on the body; |h| is clamped to max_offset_mm.
+#include <vector>
+
 #include "breastfit/core/types.h"
+#include "breastfit/fit/correspondences.h"
 #include "breastfit/fit/fit_options.h"
 #include "breastfit/fit/scan_target.h"
 
@@ -26,11 +29,21 @@ struct SurfaceDetail {
   double mean_abs_mm = 0, max_abs_mm = 0;
 };
 
+/// The first pass's correspondences when the caller has them already: those of every vertex of V
+/// (stride 1) with the normals vertex_normals(V, F) at options.max_distance_mm — e.g. the fit's
+/// final pairs when its end threshold is the detail's (fit/registration.cpp). `hints`: the
+/// searches' warm starts per vertex (only the speed depends on them; may be empty).
+struct DetailFirstPass {
+  const std::vector<Correspondence>& pairs;
+  const std::vector<Index>& hints;
+};
+
 /// Fits the offsets for the posed vertices V (faces F) to the scan. `threads`: for the
-/// correspondence searches (≤ 0: all cores); the result does not depend on it.
+/// correspondence searches (≤ 0: all cores); the result does not depend on it. With `first`, the
+/// first pass uses its pairs instead of searching (the same result, one search less).
 SurfaceDetail fit_surface_detail(const Points& V, const Triangles& F, const ScanTarget& scan,
                                  const CorrespondenceOptions& correspondences, const SurfaceDetailOptions& options,
-                                 int threads = 0);
+                                 int threads = 0, const DetailFirstPass* first = nullptr);
 
 /// V + offsets · vertex_normals(V, F). \throws InvalidInput when sizes differ.
 Points apply_surface_detail(const Points& V, const Triangles& F, const Eigen::VectorXd& offsets);

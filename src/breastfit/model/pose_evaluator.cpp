@@ -1,6 +1,7 @@
 #include "breastfit/model/pose_evaluator.h"
 
 #include <algorithm>
+#include <cstring>
 
 #include "breastfit/core/errors.h"
 #include "breastfit/mesh/normals.h"
@@ -15,6 +16,31 @@ inline Vec3 unit_cross(int m, const Vec3& y) {
     case 1: return Vec3(y.z(), 0.0, -y.x());
     default: return Vec3(-y.y(), y.x(), 0.0);
   }
+}
+
+bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+template <class M>
+bool same_bits(const M& a, const M& b) {
+  if (a.size() != b.size()) return false;
+  for (Eigen::Index k = 0; k < a.size(); ++k)
+    if (!same_bits(a.data()[k], b.data()[k])) return false;
+  return true;
+}
+
+bool same_bits(const Quat& a, const Quat& b) { return same_bits(a.coeffs(), b.coeffs()); }
+
+// Bit for bit the same parameters (so the same posed mesh: set_params may keep it).
+bool same_params(const PoseParams& a, const PoseParams& b) {
+  if (a.bones.size() != b.bones.size() || !same_bits(a.alpha, b.alpha)) return false;
+  if (!same_bits(a.global.rotation, b.global.rotation) || !same_bits(a.global.translation, b.global.translation) ||
+      !same_bits(a.global.scale, b.global.scale))
+    return false;
+  for (size_t j = 0; j < a.bones.size(); ++j)
+    if (!same_bits(a.bones[j].rotation, b.bones[j].rotation) ||
+        !same_bits(a.bones[j].translation, b.bones[j].translation) || !same_bits(a.bones[j].scale, b.bones[j].scale))
+      return false;
+  return true;
 }
 
 }  // namespace
@@ -37,7 +63,8 @@ PoseEvaluator::PoseEvaluator(const RiggedModel& model) : model_(model), layout_(
   std::vector<int> fill(shape_ptr_.begin(), shape_ptr_.end() - 1);
   for (int k = 0; k < model.num_blendshapes(); ++k) {
     const auto& verts = model.blendshapes[k].vertices;
-    for (size_t r = 0; r < verts.size(); ++r) shape_entries_[fill[verts[r]]++] = {k, static_cast<int>(r)};
+    for (size_t r = 0; r < verts.size(); ++r)
+      shape_entries_[fill[verts[r]]++] = {k, model.blendshapes[k].displacements.row(r).transpose()};
   }
   bone_linear_.resize(model.bones.size());
   bone_scale_axes_.resize(model.bones.size());
@@ -51,6 +78,9 @@ void PoseEvaluator::set_params(const PoseParams& params) {
     throw InvalidInput("pose evaluator: parameters have " + std::to_string(params.bones.size()) + " bones and " +
                        std::to_string(params.alpha.size()) + " blendshape weights, the model has " +
                        std::to_string(m.num_bones()) + " and " + std::to_string(m.num_blendshapes()));
+  // The solver sets the same parameters again (after an accepted step, at a stage's start and
+  // end): the posed mesh is already theirs.
+  if (posed_.rows() == m.num_vertices() && same_params(params, params_)) return;
   params_ = params;
   const Index nv = m.num_vertices();
 
@@ -142,9 +172,9 @@ void PoseEvaluator::vertex_jacobian(Index i, PointJacobian& out) const {
   const Mat3& GA = vertex_linear_[i];
   const int base = layout_.blendshape_offset(0);
   for (int e = shape_ptr_[i]; e < shape_ptr_[i + 1]; ++e) {
-    const auto [k, r] = shape_entries_[e];
-    out.params.push_back(base + k);
-    out.columns.push_back(GA * model_.blendshapes[k].displacements.row(r).transpose());
+    const ShapeEntry& entry = shape_entries_[e];
+    out.params.push_back(base + entry.shape);
+    out.columns.push_back(GA * entry.displacement);
   }
 }
 

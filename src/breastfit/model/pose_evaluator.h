@@ -31,7 +31,7 @@ class PoseEvaluator {
   const RiggedModel& model() const { return model_; }
   const ParamLayout& layout() const { return layout_; }
 
-  /// Poses all vertices for `params`.
+  /// Poses all vertices for `params` (free when they are bit for bit the current ones).
   void set_params(const PoseParams& params);
   const PoseParams& params() const { return params_; }
 
@@ -65,9 +65,14 @@ class PoseEvaluator {
   std::vector<Mat3> bone_scale_axes_;  // s_g R_g R_j U_j (bone scale columns)
   Mat3 global_linear_ = Mat3::Identity();  // s_g R_g
   // blendshape incidence (CSR): for vertex i, entries [shape_ptr_[i], shape_ptr_[i+1]) of
-  // shape_entries_ are the (shape k, row in shape k) pairs moving it
+  // shape_entries_ are the shapes moving it with its displacement in each (a copy: the Jacobians
+  // read them vertex by vertex, in one stream, not from 61 arrays)
+  struct ShapeEntry {
+    int shape = 0;
+    Vec3 displacement = Vec3::Zero();
+  };
   std::vector<int> shape_ptr_;
-  std::vector<std::pair<int, int>> shape_entries_;
+  std::vector<ShapeEntry> shape_entries_;
 
   void append_global(const Vec3& x, PointJacobian& out) const;
   void append_bone(int j, double w, const Vec3& d, PointJacobian& out) const;
