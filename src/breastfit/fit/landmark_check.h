@@ -47,10 +47,12 @@ struct LandmarkCheck {
   double distance_mm = 0;   ///< given landmark ↔ fitted model landmark
   double tolerance_mm = 0;
   double factor = 1;        ///< robust factor the fit's last stage gave it (1 = full weight)
-  /// Nipples only: given landmark ↔ the breast's tip found on the scan (breast_tip_on_scan);
-  /// < 0 when not checked.
+  /// Given landmark ↔ the landmark found on the scan by its own anatomical definition — the
+  /// nipples: the breast's tip (breast_tip_on_scan); the sternal notch: the jugular notch on the
+  /// other landmarks' midline (midline_notch_check.h); < 0 when not checked.
   double anatomy_distance_mm = -1;
   double anatomy_tolerance_mm = 0;
+  std::string anatomy;      ///< what was found on the scan ("the breast's tip", …); empty when not checked
   /// Given landmark ↔ where the scan's anatomy and the other landmarks put it
   /// (landmark_prediction.h); < 0 when not checked.
   double predicted_distance_mm = -1;
