@@ -67,12 +67,13 @@ std::vector<std::pair<size_t, size_t>> exchanged_labels(const std::vector<Landma
                                                         const std::vector<Vec3>& predicted,
                                                         double landmark_check_mm);
 
-/// The breast's tip on the scan near a fitted nipple: among the scan's vertices within
-/// `search_radius_mm` of the fitted model's nipple, the one farthest along the model's mean
-/// outward normal within 40 mm of the nipple. The fit can follow a wrongly placed nipple by
-/// sliding the breast's skin (the surface barely changes), so the nipple is checked against the
-/// scan's own geometry. On the 14 benchmark cases and 16 generated ones the tip lies 5–6 mm from
-/// the placed nipple on average, 13.3 mm at most. nullopt when no scan vertex is that close.
+/// The breast's tip on the scan near a nipple: among the scan's vertices within
+/// `search_radius_mm` of `model_nipple`, the one farthest along the mean outward normal of the
+/// surface (`model_vertices`, `model_normals`) within 40 mm of it. The fit can follow a wrongly
+/// placed nipple by sliding the breast's skin (the surface barely changes), so the nipple is
+/// checked against the scan's own geometry — with the scan as the surface too (the fitted model's
+/// normals turn with the click); landmark-free, the fitted model's normals place the nipple.
+/// nullopt when no scan vertex is that close.
 std::optional<Vec3> breast_tip_on_scan(const Points& scan_vertices, const Points& model_vertices,
                                        const Points& model_normals, const Vec3& model_nipple,
                                        double search_radius_mm = 35.0);

@@ -92,6 +92,9 @@ std::vector<LandmarkCheck> check_landmarks(const model::RiggedModel& model, cons
                                            const std::vector<Vec3>& predicted, const std::vector<double>& held_off) {
   std::vector<LandmarkCheck> out;
   const Points N = mesh::vertex_normals(V, model.rest.F);
+  // The breast's outward direction from the scan's own normals: the fitted model's turn with a
+  // wrongly placed nipple (its breast follows the click), the scan's do not.
+  const Points scan_N = scan.normal_sign() * mesh::vertex_normals(scan.mesh());
   for (const auto& t : landmarks) {
     LandmarkCheck c;
     c.name = t.name;
@@ -110,7 +113,7 @@ std::vector<LandmarkCheck> check_landmarks(const model::RiggedModel& model, cons
       // Around where the other landmarks put the nipple (the fitted one follows a wrong click).
       const Vec3 nipple = out.size() < predicted.size() ? predicted[out.size()]
                                                         : model_landmark_position(model, t.model_landmark, V, params);
-      if (const auto tip = breast_tip_on_scan(scan.mesh().V, V, N, nipple)) {
+      if (const auto tip = breast_tip_on_scan(scan.mesh().V, scan.mesh().V, scan_N, nipple)) {
         c.anatomy_distance_mm = (*tip - t.position).norm();
         c.anatomy_tolerance_mm = options.nipple_tip_check_mm;
         c.anatomy = "the breast's tip on the scan";
