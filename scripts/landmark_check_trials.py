@@ -2,13 +2,14 @@
 """Moved-landmark trials on cases in the bench layout (scan.ply + landmarks.mrk.json per case).
 
 Each landmark of each case in turn is walked DIST mm along the scan's skin (2 mm steps in a
-random tangent direction, each step projected back onto the plane of the nearest scan points),
+random tangent direction, or --directions evenly spread ones from a random start, each step projected back onto the plane of the nearest scan points),
 the case is registered with `breastfit register`, and report.json's landmark check says whether
 the moved landmark was flagged (and which other landmarks were). With --unmodified, the cases'
 landmarks as given are registered too (false flags). Prints one line per trial and a summary.
 
 Usage: scripts/landmark_check_trials.py --cases DIR --out DIR [--distances 20 40] [--seed 1]
-       [--only CASE...] [--landmarks NAME...] [--unmodified] [--jobs 2] [-- REGISTER_ARGS...]
+       [--directions 1] [--only CASE...] [--landmarks NAME...] [--unmodified] [--jobs 2]
+       [-- REGISTER_ARGS...]
 """
 import argparse
 import concurrent.futures
@@ -119,6 +120,7 @@ def run_trial(job):
     shutil.rmtree(os.path.join(out, "result"), ignore_errors=True)
     return {"case": name, "landmark": moved_name, "distance": dist, "flagged": flagged,
             "predicted_mm": moved.get("predicted_distance_mm"), "fit_mm": moved.get("distance_mm"),
+            "anatomy_mm": moved.get("anatomy_distance_mm"),
             "error": None if report else err, "checks": checks}
 
 
@@ -129,6 +131,8 @@ def main():
     ap.add_argument("--bin", default=os.environ.get("BREASTFIT_BIN", os.path.join(HERE, "..", "build", "bin", "breastfit")))
     ap.add_argument("--distances", type=float, nargs="+", default=[20.0, 40.0])
     ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--directions", type=int, default=1,
+                    help="moves per landmark and distance, in directions spread around the landmark")
     ap.add_argument("--only", nargs="+")
     ap.add_argument("--landmarks", nargs="+")
     ap.add_argument("--unmodified", action="store_true", help="also register the landmarks as given")
@@ -151,9 +155,11 @@ def main():
             if a.landmarks and label not in a.landmarks:
                 continue
             for dist in a.distances:
-                moved = skin.walk(cp["position"], dist, rng.uniform(0, 2 * math.pi))
-                jobs.append((a.bin, case, name, dist, mrk, label, moved,
-                             os.path.join(a.out, name, "%s_%g" % (label, dist)), a.extra))
+                start = rng.uniform(0, 2 * math.pi)
+                for k in range(a.directions):
+                    moved = skin.walk(cp["position"], dist, start + 2 * math.pi * k / a.directions)
+                    jobs.append((a.bin, case, name, dist, mrk, label, moved,
+                                 os.path.join(a.out, name, "%s_%g_%d" % (label, dist, k)), a.extra))
     results = []
     with concurrent.futures.ThreadPoolExecutor(max_workers=a.jobs) as pool:
         for r in pool.map(run_trial, jobs):
@@ -161,10 +167,11 @@ def main():
             if r["landmark"] is None:
                 print("%-14s as given: flagged %s" % (r["case"], ", ".join(r["flagged"]) or "none"), flush=True)
             else:
-                print("%-14s %-22s %2.0f mm: %s (predicted %s, fitted %s)%s" % (
+                print("%-14s %-22s %2.0f mm: %s (predicted %s, fitted %s, anatomy %s)%s" % (
                     r["case"], r["landmark"], r["distance"], "FLAGGED" if r["landmark"] in r["flagged"] else "missed",
                     "-" if r["predicted_mm"] is None else "%.1f" % r["predicted_mm"],
                     "-" if r["fit_mm"] is None else "%.1f" % r["fit_mm"],
+                    "-" if r["anatomy_mm"] is None else "%.1f" % r["anatomy_mm"],
                     "" if not r["error"] else " error: " + r["error"]), flush=True)
     with open(os.path.join(a.out, "trials.json"), "w") as f:
         json.dump(results, f, indent=1)
@@ -183,13 +190,14 @@ def main():
     given = [r for r in results if r["landmark"] is None]
     if given:
         print("cases with a false flag (as given): %d / %d" % (sum(bool(r["flagged"]) for r in given), len(given)))
-        spread = {}
-        for r in given:
-            for n, c in r["checks"].items():
-                if "predicted_distance_mm" in c:
-                    spread.setdefault(n, []).append(c["predicted_distance_mm"])
-        for n, v in spread.items():
-            print("  %-22s predicted distance as given: mean %.1f, max %.1f mm" % (n, np.mean(v), np.max(v)))
+        for key in ("predicted_distance_mm", "anatomy_distance_mm"):
+            spread = {}
+            for r in given:
+                for n, c in r["checks"].items():
+                    if key in c:
+                        spread.setdefault(n, []).append(c[key])
+            for n, v in spread.items():
+                print("  %-22s %s as given: mean %.1f, max %.1f mm (%d cases)" % (n, key, np.mean(v), np.max(v), len(v)))
     return 0
 
 

@@ -164,11 +164,14 @@ function rebuildLandmarkList() {
     const check = state.result && state.result.landmark_checks[name];
     if (check && check.flagged) {
       li.classList.add('flagged');
-      const byModel = check.distance_mm > check.tolerance_mm;
-      const d = byModel ? check.distance_mm : check.breast_tip_distance_mm;
       const span = document.createElement('span');
       span.className = 'check';
-      span.textContent = byModel ? ` ${d.toFixed(1)} mm from the fit: check it` : ` ${d.toFixed(1)} mm from the breast tip: check it`;
+      if (check.predicted_distance_mm > check.predicted_tolerance_mm)
+        span.textContent = ` ${check.predicted_distance_mm.toFixed(1)} mm from where the others put it: check it`;
+      else if (check.distance_mm > check.tolerance_mm)
+        span.textContent = ` ${check.distance_mm.toFixed(1)} mm from the fit: check it`;
+      else
+        span.textContent = ` ${check.anatomy_distance_mm.toFixed(1)} mm from ${check.anatomy}: check it`;
       li.appendChild(span);
     }
     li.onclick = () => { state.selected = name; rebuildLandmarks(); };

@@ -74,7 +74,8 @@ int flagged_moves(int seed, synth::PoseType pose, int* trials) {
   const FitOptions o;
   const FitResult base = register_template(model, scan, match_landmarks(model, lms), o);
   for (const auto& ch : base.summary.landmark_checks) {
-    EXPECT_FALSE(ch.flagged) << ch.name << " as given: predicted " << ch.predicted_distance_mm << " mm";
+    EXPECT_FALSE(ch.flagged) << ch.name << " as given: predicted " << ch.predicted_distance_mm << " mm, anatomy "
+                             << ch.anatomy_distance_mm << " mm";
     EXPECT_GE(ch.predicted_distance_mm, 0.0) << ch.name;
   }
   std::mt19937 rng(static_cast<unsigned>(seed));
@@ -89,7 +90,7 @@ int flagged_moves(int seed, synth::PoseType pose, int* trials) {
       ++*trials;
       if (ch && ch->flagged) ++flagged;
       if (std::getenv("BREASTFIT_VERBOSE"))
-        std::printf("%s %2.0f mm: fitted %5.1f predicted %5.1f tip %5.1f flagged %d\n", lms[k].first.c_str(), d,
+        std::printf("%s %2.0f mm: fitted %5.1f predicted %5.1f anatomy %5.1f flagged %d\n", lms[k].first.c_str(), d,
                     ch->distance_mm, ch->predicted_distance_mm, ch->anatomy_distance_mm, ch->flagged);
     }
   return flagged;

@@ -133,6 +133,7 @@ void FitOptions::validate() const {
   require(landmark_warning_mm > 0, "landmark_warning_mm", landmark_warning_mm, "must be > 0");
   require(positive(landmark_check_mm), "landmark_check_mm", landmark_check_mm, "must be finite and > 0");
   require(positive(nipple_tip_check_mm), "nipple_tip_check_mm", nipple_tip_check_mm, "must be finite and > 0");
+  require(positive(notch_check_mm), "notch_check_mm", notch_check_mm, "must be finite and > 0");
   require(positive(max_surface_mae_mm), "max_surface_mae_mm", max_surface_mae_mm, "must be > 0");
   require(orientation_min_margin >= 0, "orientation_min_margin", orientation_min_margin, "must be >= 0");
   require(min_kept_fraction >= 0 && min_kept_fraction <= 1, "min_kept_fraction", min_kept_fraction, "must be in [0, 1]");

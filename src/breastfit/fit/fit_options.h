@@ -127,6 +127,9 @@ struct FitOptions {
   /// A given nipple farther than this from the breast's tip found on the scan is flagged
   /// (landmark_check.h: breast_tip_on_scan; at most 13.3 mm on 30 benchmark cases as placed).
   double nipple_tip_check_mm = 18.0;
+  /// A given sternal notch farther than this sideways (1.5× that vertically) from the jugular
+  /// notch found on the scan on the other landmarks' midline is flagged (midline_notch_check.h).
+  double notch_check_mm = 12.0;
   /// Landmark-free: the kept orientation must score this share better than the best different
   /// one (fit/orientation_search.h), else a warning says the orientation is uncertain.
   double orientation_min_margin = 0.15;

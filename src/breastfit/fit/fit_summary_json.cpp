@@ -32,8 +32,9 @@ nlohmann::json landmark_checks_json(const std::vector<LandmarkCheck>& checks) {
     out[c.name] = {{"distance_mm", c.distance_mm}, {"tolerance_mm", c.tolerance_mm}, {"factor", c.factor},
                    {"flagged", c.flagged}};
     if (c.anatomy_distance_mm >= 0) {
-      out[c.name]["breast_tip_distance_mm"] = c.anatomy_distance_mm;
-      out[c.name]["breast_tip_tolerance_mm"] = c.anatomy_tolerance_mm;
+      out[c.name]["anatomy_distance_mm"] = c.anatomy_distance_mm;
+      out[c.name]["anatomy_tolerance_mm"] = c.anatomy_tolerance_mm;
+      out[c.name]["anatomy"] = c.anatomy;
     }
     if (c.predicted_distance_mm >= 0) {
       out[c.name]["predicted_distance_mm"] = c.predicted_distance_mm;

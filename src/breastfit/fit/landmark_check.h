@@ -47,10 +47,12 @@ struct LandmarkCheck {
   double distance_mm = 0;   ///< given landmark ↔ fitted model landmark
   double tolerance_mm = 0;
   double factor = 1;        ///< robust factor the fit's last stage gave it (1 = full weight)
-  /// Nipples only: given landmark ↔ the breast's tip found on the scan (breast_tip_on_scan);
-  /// < 0 when not checked.
+  /// Given landmark ↔ the landmark found on the scan by its own anatomical definition — the
+  /// nipples: the breast's tip (breast_tip_on_scan); the sternal notch: the jugular notch on the
+  /// other landmarks' midline (midline_notch_check.h); < 0 when not checked.
   double anatomy_distance_mm = -1;
   double anatomy_tolerance_mm = 0;
+  std::string anatomy;      ///< what was found on the scan ("the breast's tip", …); empty when not checked
   /// Given landmark ↔ where the scan's anatomy and the other landmarks put it
   /// (landmark_prediction.h); < 0 when not checked.
   double predicted_distance_mm = -1;
@@ -65,12 +67,13 @@ std::vector<std::pair<size_t, size_t>> exchanged_labels(const std::vector<Landma
                                                         const std::vector<Vec3>& predicted,
                                                         double landmark_check_mm);
 
-/// The breast's tip on the scan near a fitted nipple: among the scan's vertices within
-/// `search_radius_mm` of the fitted model's nipple, the one farthest along the model's mean
-/// outward normal within 40 mm of the nipple. The fit can follow a wrongly placed nipple by
-/// sliding the breast's skin (the surface barely changes), so the nipple is checked against the
-/// scan's own geometry. On the 14 benchmark cases and 16 generated ones the tip lies 5–6 mm from
-/// the placed nipple on average, 13.3 mm at most. nullopt when no scan vertex is that close.
+/// The breast's tip on the scan near a nipple: among the scan's vertices within
+/// `search_radius_mm` of `model_nipple`, the one farthest along the mean outward normal of the
+/// surface (`model_vertices`, `model_normals`) within 40 mm of it. The fit can follow a wrongly
+/// placed nipple by sliding the breast's skin (the surface barely changes), so the nipple is
+/// checked against the scan's own geometry — with the scan as the surface too (the fitted model's
+/// normals turn with the click); landmark-free, the fitted model's normals place the nipple.
+/// nullopt when no scan vertex is that close.
 std::optional<Vec3> breast_tip_on_scan(const Points& scan_vertices, const Points& model_vertices,
                                        const Points& model_normals, const Vec3& model_nipple,
                                        double search_radius_mm = 35.0);

@@ -12,6 +12,7 @@
 #include "breastfit/fit/initialization.h"
 #include "breastfit/fit/jugular_notch.h"
 #include "breastfit/fit/landmark_prediction.h"
+#include "breastfit/fit/midline_notch_check.h"
 #include "breastfit/fit/orientation_search.h"
 #include "breastfit/fit/stage_minimizer.h"
 #include "breastfit/fit/problem.h"
@@ -77,6 +78,12 @@ Verdict judge(const FitOptions& options, const Problem& problem, Termination ter
                     fmt(kept_mae_mm, 2) + " mm"};
 }
 
+struct BodyAxes {
+  Vec3 up, front;
+};
+std::optional<BodyAxes> fitted_body_axes(const model::RiggedModel& model, const Points& V, const Points& N,
+                                         const model::PoseParams& params);
+
 // Flags on the final surface V (detail included: what the user sees); the robust factor is the one
 // the fit's last stage used, on the parametric model V_model.
 std::vector<LandmarkCheck> check_landmarks(const model::RiggedModel& model, const Points& V, const Points& V_model,
@@ -85,6 +92,9 @@ std::vector<LandmarkCheck> check_landmarks(const model::RiggedModel& model, cons
                                            const std::vector<Vec3>& predicted, const std::vector<double>& held_off) {
   std::vector<LandmarkCheck> out;
   const Points N = mesh::vertex_normals(V, model.rest.F);
+  // The breast's outward direction from the scan's own normals: the fitted model's turn with a
+  // wrongly placed nipple (its breast follows the click), the scan's do not.
+  const Points scan_N = scan.normal_sign() * mesh::vertex_normals(scan.mesh());
   for (const auto& t : landmarks) {
     LandmarkCheck c;
     c.name = t.name;
@@ -103,11 +113,25 @@ std::vector<LandmarkCheck> check_landmarks(const model::RiggedModel& model, cons
       // Around where the other landmarks put the nipple (the fitted one follows a wrong click).
       const Vec3 nipple = out.size() < predicted.size() ? predicted[out.size()]
                                                         : model_landmark_position(model, t.model_landmark, V, params);
-      if (const auto tip = breast_tip_on_scan(scan.mesh().V, V, N, nipple)) {
+      if (const auto tip = breast_tip_on_scan(scan.mesh().V, scan.mesh().V, scan_N, nipple)) {
         c.anatomy_distance_mm = (*tip - t.position).norm();
         c.anatomy_tolerance_mm = options.nipple_tip_check_mm;
+        c.anatomy = "the breast's tip on the scan";
         c.flagged = c.flagged || c.anatomy_distance_mm > c.anatomy_tolerance_mm;
       }
+    }
+    if (t.name == "sternal_notch") {
+      // On the midline of the other landmarks, at the scan's profile break (midline_notch_check.h).
+      const Vec3 near = out.size() < predicted.size() ? predicted[out.size()]
+                                                      : model_landmark_position(model, t.model_landmark, V, params);
+      if (const auto axes = fitted_body_axes(model, V, N, params))
+        if (const auto notch = check_notch_on_midline(scan.mesh().V, landmarks, near, axes->up, axes->front,
+                                                      t.position, options.notch_check_mm)) {
+          c.anatomy_distance_mm = notch->distance_mm;
+          c.anatomy_tolerance_mm = notch->tolerance_mm;
+          c.anatomy = "the jugular notch on the scan's midline";
+          c.flagged = c.flagged || notch->flagged();
+        }
     }
     out.push_back(c);
   }
@@ -163,9 +187,6 @@ std::vector<LandmarkTarget> breast_tip_targets(const model::RiggedModel& model, 
 
 // The fitted body's axes: up along the sternum (xiphoid → notch), front the model's outward
 // normals around both nipples (their lateral parts cancel), level. nullopt without those landmarks.
-struct BodyAxes {
-  Vec3 up, front;
-};
 std::optional<BodyAxes> fitted_body_axes(const model::RiggedModel& model, const Points& V, const Points& N,
                                          const model::PoseParams& params) {
   Vec3 up = posed_vertical_axis(model, params);
@@ -448,7 +469,7 @@ void finish_fit(const model::RiggedModel& model, ScanTarget& scan, Problem& prob
     else if (c.distance_mm > c.tolerance_mm)
       why = fmt(c.distance_mm) + " mm from the fitted model's landmark (tolerance " + fmt(c.tolerance_mm, 0);
     else
-      why = fmt(c.anatomy_distance_mm) + " mm from the breast's tip on the scan (tolerance " +
+      why = fmt(c.anatomy_distance_mm) + " mm from " + c.anatomy + " (tolerance " +
             fmt(c.anatomy_tolerance_mm, 0);
     summary.warnings.push_back("landmark '" + c.name + "' is " + why + " mm): check it" +
                                (c.factor < 1 ? "; it was down-weighted in the fit (weight x" + fmt(c.factor, 2) + ")"

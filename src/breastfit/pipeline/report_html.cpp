@@ -232,7 +232,9 @@ void landmarks_table(std::string& h, const RegisterResult& r) {
                     (check->predicted_distance_mm > check->predicted_tolerance_mm
                          ? num(check->predicted_distance_mm, 0) +
                                " mm from where the scan's anatomy and the other landmarks put it"
-                         : "beyond " + num(check->tolerance_mm, 0) + " mm") +
+                     : check->distance_mm > check->tolerance_mm || check->anatomy.empty()
+                         ? "beyond " + num(check->tolerance_mm, 0) + " mm"
+                         : num(check->anatomy_distance_mm, 0) + " mm from " + html_escape(check->anatomy)) +
                     (check->factor < 1 ? "; down-weighted" : "") + "</span>"
               : "") +
          "</td></tr>\n";
