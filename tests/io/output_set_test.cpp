@@ -6,6 +6,8 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <sys/stat.h>
 
@@ -85,6 +87,13 @@ TEST(OutputSet, StaleFilesOfThePreviousSetGoForeignFilesStay) {
   EXPECT_EQ(read(dir / "sub" / "mine.txt"), "mine");
 }
 
+// Writes `files` (name, text) through a set of kNames into `dir` and commits it.
+void commit_set(const fs::path& dir, const std::vector<std::pair<std::string, std::string>>& files) {
+  OutputSet set(dir, kNames, "report.json");
+  for (const auto& [name, text] : files) write(set.path(name), text);
+  set.commit();
+}
+
 ino_t inode(const fs::path& p) {
   struct stat st {};
   EXPECT_EQ(::stat(p.c_str(), &st), 0) << p;
@@ -104,12 +113,7 @@ TEST(OutputSet, ThePreviousDirectoryIsSwappedForTheNewOneKeepingTheUsersFiles) {
   fs::create_hard_link(dir / "notes.txt", parent / "notes_elsewhere.txt");
   fs::permissions(dir, fs::perms::owner_all, fs::perm_options::replace);
   const ino_t before = inode(dir);
-  {
-    OutputSet set(dir, kNames, "report.json");
-    write(set.path("a.txt"), "new");
-    write(set.path("report.json"), "new");
-    set.commit();
-  }
+  commit_set(dir, {{"a.txt", "new"}, {"report.json", "new"}});
   EXPECT_NE(inode(dir), before);  // swapped, not modified in place
   EXPECT_EQ(fs::status(dir).permissions(), fs::perms::owner_all);
   EXPECT_EQ(read(dir / "a.txt"), "new");
@@ -132,22 +136,14 @@ TEST(OutputSet, AWorkingDirectoryOrALinkedDirectoryIsUpdatedInPlace) {
   const fs::path cwd = fs::current_path();
   const ino_t before = inode(dir);
   fs::current_path(dir);
-  {
-    OutputSet set(dir, kNames, "report.json");
-    write(set.path("report.json"), "in place");
-    set.commit();
-  }
+  commit_set(dir, {{"report.json", "in place"}});
   fs::current_path(cwd);
   EXPECT_EQ(inode(dir), before);
   EXPECT_EQ(read(dir / "report.json"), "in place");
   EXPECT_FALSE(fs::exists(dir / "c.txt"));
 
   fs::create_directory_symlink("out", parent / "linked");
-  {
-    OutputSet set(parent / "linked", kNames, "report.json");
-    write(set.path("report.json"), "through the link");
-    set.commit();
-  }
+  commit_set(parent / "linked", {{"report.json", "through the link"}});
   EXPECT_TRUE(fs::is_symlink(parent / "linked"));
   EXPECT_EQ(read(dir / "report.json"), "through the link");
   EXPECT_EQ(staging_dirs_in(parent), 0);

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "breastfit/core/errors.h"
+#include "support/expect_same_mesh.h"
 #include "support/test_paths.h"
 
 namespace breastfit::io {
@@ -151,15 +152,6 @@ std::string scanner_ply(bool big_endian, const std::vector<std::vector<std::int3
   return s;
 }
 
-void expect_same_mesh(const TriangleMesh& a, const TriangleMesh& b) {
-  EXPECT_EQ(a.V, b.V);
-  EXPECT_EQ(a.F, b.F);
-  EXPECT_EQ(a.N, b.N);
-  EXPECT_EQ(a.C, b.C);
-  EXPECT_EQ(a.UV, b.UV);
-  EXPECT_EQ(a.FUV, b.FUV);
-}
-
 TEST(ReadPly, ScannerLayoutReadsAsTheGeneralReaderDoes) {
   // Big-endian files take the general reader on this (little-endian) machine: the direct
   // path for the little-endian file must give the same mesh, bit for bit.
@@ -168,7 +160,7 @@ TEST(ReadPly, ScannerLayoutReadsAsTheGeneralReaderDoes) {
     SCOPED_TRACE(extra ? "normals, colours, texture coordinates" : "positions only");
     const TriangleMesh little = read_ply_from_memory(scanner_ply(false, triangles, extra), "l.ply");
     const TriangleMesh big = read_ply_from_memory(scanner_ply(true, triangles, extra), "b.ply");
-    expect_same_mesh(little, big);
+    test::expect_same_mesh(little, big);
     ASSERT_EQ(little.num_faces(), 3);  // the face repeating vertex 2 is dropped
     EXPECT_EQ(little.F.row(2), (Eigen::RowVector3i(0, 4, 3)));
     EXPECT_EQ(little.V(1, 0), static_cast<double>(0.1f));
@@ -179,7 +171,7 @@ TEST(ReadPly, ScannerLayoutReadsAsTheGeneralReaderDoes) {
   // A quad among the triangles: read (and triangulated) by the general reader.
   const std::vector<std::vector<std::int32_t>> mixed = {{0, 1, 2}, {1, 3, 4, 2}};
   const TriangleMesh quad = read_ply_from_memory(scanner_ply(false, mixed, true), "q.ply");
-  expect_same_mesh(quad, read_ply_from_memory(scanner_ply(true, mixed, true), "q.ply"));
+  test::expect_same_mesh(quad, read_ply_from_memory(scanner_ply(true, mixed, true), "q.ply"));
   EXPECT_EQ(quad.num_faces(), 3);
 }
 

@@ -6,6 +6,7 @@
 
 #include "breastfit/core/errors.h"
 #include "breastfit/io/read_obj.h"
+#include "support/expect_same_mesh.h"
 #include "support/test_paths.h"
 
 namespace breastfit::io {
@@ -32,12 +33,7 @@ TEST(WriteObj, RoundTripWithTexcoordsNormalsAndColoursIsExact) {
   const TriangleMesh m = textured_quad();
   const TriangleMesh r = read_obj_from_memory(
       write_obj_to_memory(m, {.normals = true, .colors = true, .texcoords = true}), "rt.obj");
-  EXPECT_EQ(r.V, m.V);
-  EXPECT_EQ(r.F, m.F);
-  EXPECT_EQ(r.N, m.N);
-  EXPECT_EQ(r.UV, m.UV);
-  EXPECT_EQ(r.FUV, m.FUV);
-  EXPECT_EQ(r.C, m.C);
+  test::expect_same_mesh(r, m);
 }
 
 TEST(WriteObj, OptionsSelectWhatIsWritten) {
