@@ -1,13 +1,12 @@
 #include "breastfit/cohort/batch.h"
 
-#include <atomic>
 #include <fstream>
 #include <mutex>
-#include <thread>
 
 #include "breastfit/cohort/cohort_csv.h"
 #include "breastfit/cohort/cohort_html.h"
 #include "breastfit/core/errors.h"
+#include "breastfit/core/task_queue.h"
 #include "breastfit/io/output_set.h"
 #include "breastfit/model/template_library.h"
 
@@ -27,22 +26,14 @@ std::vector<CaseRecord> run_batch(const std::vector<CohortCase>& cases, const fs
   if (options.jobs > 1 && run.fit.threads == 0) run.fit.threads = 1;
 
   std::vector<CaseRecord> records(cases.size());
-  std::atomic<size_t> next{0};
   std::mutex progress_mutex;
   int done = 0;
-  const auto worker = [&] {
-    for (size_t i = next++; i < cases.size(); i = next++) {
-      records[i] = run_case(cases[i], out_root, run);
-      const std::lock_guard lock(progress_mutex);
-      ++done;
-      if (progress) progress(done, static_cast<int>(cases.size()), records[i]);
-    }
-  };
-  const size_t threads = std::min<size_t>(static_cast<size_t>(options.jobs), std::max<size_t>(cases.size(), 1));
-  std::vector<std::thread> pool;
-  for (size_t t = 1; t < threads; ++t) pool.emplace_back(worker);
-  worker();
-  for (auto& t : pool) t.join();
+  run_in_order(cases.size(), static_cast<unsigned>(options.jobs), [&](size_t i) {
+    records[i] = run_case(cases[i], out_root, run);
+    const std::lock_guard lock(progress_mutex);
+    ++done;
+    if (progress) progress(done, static_cast<int>(cases.size()), records[i]);
+  });
   return records;
 }
 

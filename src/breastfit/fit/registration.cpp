@@ -93,8 +93,9 @@ std::vector<LandmarkCheck> check_landmarks(const model::RiggedModel& model, cons
   std::vector<LandmarkCheck> out;
   const Points N = mesh::vertex_normals(V, model.rest.F);
   // The breast's outward direction from the scan's own normals: the fitted model's turn with a
-  // wrongly placed nipple (its breast follows the click), the scan's do not.
-  const Points scan_N = scan.normal_sign() * mesh::vertex_normals(scan.mesh());
+  // wrongly placed nipple (its breast follows the click), the scan's do not. Computed once, for
+  // the first nipple given.
+  Points scan_N;
   for (const auto& t : landmarks) {
     LandmarkCheck c;
     c.name = t.name;
@@ -113,6 +114,7 @@ std::vector<LandmarkCheck> check_landmarks(const model::RiggedModel& model, cons
       // Around where the other landmarks put the nipple (the fitted one follows a wrong click).
       const Vec3 nipple = out.size() < predicted.size() ? predicted[out.size()]
                                                         : model_landmark_position(model, t.model_landmark, V, params);
+      if (scan_N.rows() == 0) scan_N = scan.normal_sign() * mesh::vertex_normals(scan.mesh());
       if (const auto tip = breast_tip_on_scan(scan.mesh().V, scan.mesh().V, scan_N, nipple)) {
         c.anatomy_distance_mm = (*tip - t.position).norm();
         c.anatomy_tolerance_mm = options.nipple_tip_check_mm;

@@ -4,15 +4,12 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
-#include <atomic>
-#include <exception>
-#include <functional>
 #include <limits>
-#include <system_error>
 #include <thread>
 #include <utility>
 
 #include "breastfit/core/errors.h"
+#include "breastfit/core/task_queue.h"
 #include "breastfit/fit/scan_target.h"
 #include "breastfit/mesh/cleanup.h"
 #include "breastfit/mesh/body_frame.h"
@@ -66,31 +63,6 @@ Points rows_of(const Points& P, const std::vector<Eigen::Index>& idx) {
 
 /// Pale version of a drawing colour (the parts that follow the fitted model, not the scan).
 render::Rgb pale(render::Rgb c) { return render::mix(c, {255, 255, 255}, 0.5); }
-
-/// Runs the tasks on `workers` threads (the calling one included; at least one, at most one per
-/// task), each taking the next task in order; rethrows the first task's exception, in task order.
-void run_tasks(const std::vector<std::function<void()>>& tasks, unsigned workers) {
-  std::vector<std::exception_ptr> errors(tasks.size());
-  std::atomic<size_t> next{0};
-  auto work = [&] {
-    for (size_t i; (i = next++) < tasks.size();) try {
-        tasks[i]();
-      } catch (...) {
-        errors[i] = std::current_exception();
-      }
-  };
-  std::vector<std::thread> threads;
-  const size_t n = std::clamp<size_t>(workers, 1, std::max<size_t>(tasks.size(), 1));
-  for (size_t w = 1; w < n; ++w) try {
-      threads.emplace_back(work);
-    } catch (const std::system_error&) {  // no more threads: the ones running take the rest
-      break;
-    }
-  work();
-  for (auto& t : threads) t.join();
-  for (const auto& e : errors)
-    if (e) std::rethrow_exception(e);
-}
 
 constexpr const char* kOffScanLegend = "pale: no scan under it";
 /// "2.5", "10": a scale value without trailing zeros.
@@ -347,10 +319,12 @@ ReportFigures render_report_figures(const RegisterResult& r, const ReportFigureO
   // pixels do not depend on `parallel`. The tasks are taken in order by one worker per core
   // (more would not finish sooner, only hold more full-size image buffers at once); the two
   // large figures come first and last, so they are rarely in memory together.
-  std::vector<std::function<void()>> tasks;
-  for (size_t k = 0; k < kOverlays.size(); ++k) tasks.emplace_back([&, k] { overlay_figure(k); });
-  tasks.emplace_back(distance_figure);
-  run_tasks(tasks, o.parallel ? std::thread::hardware_concurrency() : 1);
+  run_in_order(kOverlays.size() + 1, o.parallel ? std::thread::hardware_concurrency() : 1, [&](size_t k) {
+    if (k < kOverlays.size())
+      overlay_figure(k);
+    else
+      distance_figure();
+  });
   return out;
 }
 
