@@ -9,6 +9,7 @@
 #include "breastfit/fit/nipple_apex.h"
 #include "breastfit/fit/pectoral_insertion.h"
 #include "breastfit/fit/scan_target.h"
+#include "breastfit/fit/shoulder_landmarks.h"
 #include "breastfit/fit/sliding_landmarks.h"
 #include "breastfit/mesh/normals.h"
 #include "breastfit/model/template_library.h"
@@ -32,6 +33,26 @@ std::optional<Vec3> fitted_landmark(const model::RiggedModel& model, const fit::
   return fit::model_landmark_position(model, *idx, fit.model_vertices, fit.params);
 }
 
+// The fitted sternum's frame on one side ("R" or "L"): up along the sternum, front level from the
+// nipples; nullopt without those landmarks.
+std::optional<fit::SternumFrame> sternum_frame(const model::RiggedModel& model, const fit::FitResult& fit,
+                                               const std::string& side) {
+  const auto notch = fitted_landmark(model, fit, "sternal_notch"), xiphoid = fitted_landmark(model, fit, "xiphoid");
+  const auto right = fitted_landmark(model, fit, "nipple_R"), left = fitted_landmark(model, fit, "nipple_L");
+  if (!notch || !xiphoid || !right || !left) return std::nullopt;
+  fit::SternumFrame f;
+  f.notch = *notch;
+  f.length_mm = (*notch - *xiphoid).norm();
+  f.up = (*notch - *xiphoid).normalized();
+  f.front = f.up.cross(*left - *right).normalized();
+  if ((0.5 * (*left + *right) - *xiphoid).dot(f.front) < 0) f.front = -f.front;
+  f.lateral = f.up.cross(f.front);
+  if (f.lateral.dot(*left - *right) < 0) f.lateral = -f.lateral;  // towards the left
+  if (side == "R") f.lateral = -f.lateral;
+  if (!f.front.allFinite() || !f.lateral.allFinite()) return std::nullopt;
+  return f;
+}
+
 // The pectoral insertion refined on the scan by its definition (fit/pectoral_insertion.h): the front
 // of the arm where the anterior axillary fold leaves it, searched from the fitted one; nullopt
 // when the detector is unsure (no crease, holes) or the fit lacks the landmarks, and not tried
@@ -42,16 +63,30 @@ std::optional<Vec3> pectoral_insertion_refined(const model::RiggedModel& model, 
                                                const std::string& name, const fit::ScanTarget& scan) {
   if (fit.summary.orientation.arm_pose.rfind("arms hanging", 0) != 0) return std::nullopt;
   const std::string side = name.substr(name.size() - 1);
-  const auto notch = fitted_landmark(model, fit, "sternal_notch"), xiphoid = fitted_landmark(model, fit, "xiphoid");
-  const auto right = fitted_landmark(model, fit, "nipple_R"), left = fitted_landmark(model, fit, "nipple_L");
+  const auto frame = sternum_frame(model, fit, side);
+  const auto nipple = fitted_landmark(model, fit, "nipple_" + side);
   const auto fitted = fitted_landmark(model, fit, name);
   const auto arm = fit::upper_arm_axis(model, fit.model_vertices, fit.params, side);
-  if (!notch || !xiphoid || !right || !left || !fitted || !arm) return std::nullopt;
-  // The body's axes from the fitted sternum and nipples: up along the sternum, front level.
-  const Vec3 up = (*notch - *xiphoid).normalized();
-  Vec3 front = up.cross(*left - *right).normalized();
-  if ((0.5 * (*left + *right) - *xiphoid).dot(front) < 0) front = -front;
-  return fit::pectoral_insertion_on_scan(scan.mesh().V, *fitted, *arm, up, front, side == "R" ? *right : *left);
+  if (!frame || !nipple || !fitted || !arm) return std::nullopt;
+  return fit::pectoral_insertion_on_scan(scan.mesh().V, *fitted, *arm, frame->up, frame->front, *nipple);
+}
+
+// The acromion, the mid-axillary point and the pectoral insertion refined on the scan by the
+// sternum's proportions (fit/shoulder_landmarks.h), only with the arms on boards (the orientation
+// search's arm pose): there the template's skin over the shoulder and the side of the chest follows
+// the abducted arm.
+std::optional<Vec3> shoulder_landmark_refined(const model::RiggedModel& model, const fit::FitResult& fit,
+                                              const std::string& name, const fit::ScanTarget& scan) {
+  const bool acromion = name.rfind("acromion_", 0) == 0, pectoral = name.rfind("pectoral_insertion_", 0) == 0;
+  if (!acromion && !pectoral && name.rfind("midaxillary_", 0) != 0) return std::nullopt;
+  if (fit.summary.orientation.arm_pose.rfind("arms abducted", 0) != 0) return std::nullopt;
+  const auto frame = sternum_frame(model, fit, name.substr(name.size() - 1));
+  const auto fitted = fitted_landmark(model, fit, name);
+  if (!frame || !fitted) return std::nullopt;
+  const Points& V = scan.mesh().V;
+  return acromion ? fit::acromion_on_scan(V, *fitted, *frame)
+         : pectoral ? fit::abducted_pectoral_insertion_on_scan(V, *fitted, *frame)
+                    : fit::midaxillary_on_scan(V, *fitted, *frame);
 }
 
 // The nipple on the scan at the final fit: the breast's apex along its level forward axis
@@ -66,8 +101,8 @@ std::optional<Vec3> nipple_refined(const model::RiggedModel& model, const fit::F
 }
 
 // The landmark-free fit's landmarks snapped onto the scan (`scan`: its closest-point index), the
-// nipples (the breast's apex) and the pectoral insertions refined on the scan's anatomy where the
-// detectors are sure.
+// nipples (the breast's apex), the pectoral insertions and, arms on boards, the acromia and the
+// mid-axillary points refined on the scan where the detectors are sure.
 DetectedLandmarks landmarks_on_scan(const model::RiggedModel& model, const std::string& scan_name,
                                     RegisterResult registration, const fit::ScanTarget& scan) {
   DetectedLandmarks out;
@@ -90,6 +125,12 @@ DetectedLandmarks landmarks_on_scan(const model::RiggedModel& model, const std::
         out.landmarks.push_back(d);
         continue;
       }
+    }
+    if (const auto refined = shoulder_landmark_refined(model, r.fit, p.name, scan)) {
+      d.position_mm = *refined;  // a scan vertex
+      d.method = "sternum's proportions on the scan";
+      out.landmarks.push_back(d);
+      continue;
     }
     const auto& held = r.fit.summary.anatomical_landmark_names;
     const bool anatomical = std::find(held.begin(), held.end(), p.name) != held.end();

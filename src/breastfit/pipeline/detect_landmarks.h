@@ -2,8 +2,10 @@
 /// \file The 12 landmarks found on a scan without any given (`breastfit landmarks`): a landmark-free
 /// registration (fit/orientation_search.h; the nipples held at the breast tips found on the scan),
 /// then each of the fitted template's landmarks snapped onto the scan, with a confidence; the
-/// nipples refined to the breast's apex on the scan (fit/nipple_apex.h) and the pectoral
-/// insertions, arms hanging, by their definition on the scan (fit/pectoral_insertion.h). The result is a starting point a person checks and corrects before
+/// nipples refined to the breast's apex on the scan (fit/nipple_apex.h), the pectoral insertions,
+/// arms hanging, by their definition on the scan (fit/pectoral_insertion.h), and with the arms on
+/// boards the acromia, mid-axillary points and pectoral insertions by the sternum's proportions
+/// (fit/shoulder_landmarks.h). The result is a starting point a person checks and corrects before
 /// `register --landmarks`.
 #include <string>
 #include <vector>
@@ -21,7 +23,8 @@ struct DetectedLandmark {
   double confidence = 0;
   /// "fitted template, snapped to the scan", or the anatomy that held or refined it ("breast tip on
   /// the scan", "jugular notch on the scan", "breast fold on the scan", "anterior axillary fold on the
-  /// scan": the pectoral insertion, fit/pectoral_insertion.h)
+  /// scan": the pectoral insertion, fit/pectoral_insertion.h; "sternum's proportions on the scan":
+  /// fit/shoulder_landmarks.h)
   std::string method;
 };
 

@@ -1,0 +1,78 @@
+#include "breastfit/fit/shoulder_landmarks.h"
+
+#include <cmath>
+#include <limits>
+
+namespace breastfit::fit {
+namespace {
+
+// A point in the frame: height above the notch, depth in front of it, distance to the side.
+struct Local {
+  double height, front, lateral;
+};
+
+Local local(const SternumFrame& f, const Vec3& p) {
+  const Vec3 d = p - f.notch;
+  return {d.dot(f.up), d.dot(f.front), d.dot(f.lateral)};
+}
+
+// The scan vertex with the highest `score` among those `in` the strip, when it lies within
+// `max_shift_mm` of the fitted point; nullopt otherwise (or without a sternum).
+template <class InStrip, class Score>
+std::optional<Vec3> best_in_strip(const Points& V, const Vec3& fitted, const SternumFrame& frame,
+                                  const ShoulderLandmarkOptions& o, InStrip in, Score score) {
+  if (!(frame.length_mm > 0)) return std::nullopt;
+  Index best = -1;
+  double top = -std::numeric_limits<double>::infinity();
+  for (Index i = 0; i < V.rows(); ++i) {
+    const Local p = local(frame, V.row(i).transpose());
+    if (!in(p)) continue;
+    const double s = score(p);
+    if (s > top) {
+      top = s;
+      best = i;
+    }
+  }
+  if (best < 0) return std::nullopt;
+  const Vec3 p = V.row(best).transpose();
+  if ((p - fitted).norm() > o.max_shift_mm) return std::nullopt;
+  return p;
+}
+
+}  // namespace
+
+std::optional<Vec3> midaxillary_on_scan(const Points& scan_vertices, const Vec3& fitted, const SternumFrame& frame,
+                                        const ShoulderLandmarkOptions& o) {
+  const Local f = local(frame, fitted);
+  const double height = -o.midaxillary_drop * frame.length_mm, w = o.strip_half_width_mm;
+  return best_in_strip(
+      scan_vertices, fitted, frame, o,
+      [&](const Local& p) { return std::abs(p.height - height) <= w && std::abs(p.front - f.front) <= w; },
+      [&](const Local& p) { return -std::abs(p.lateral - f.lateral); });
+}
+
+std::optional<Vec3> acromion_on_scan(const Points& scan_vertices, const Vec3& fitted, const SternumFrame& frame,
+                                     const ShoulderLandmarkOptions& o) {
+  const Local f = local(frame, fitted);
+  const double breadth = o.acromion_breadth * frame.length_mm, w = o.strip_half_width_mm;
+  return best_in_strip(
+      scan_vertices, fitted, frame, o,
+      [&](const Local& p) {
+        return std::abs(p.lateral - breadth) <= w && std::abs(p.front - f.front) <= w &&
+               std::abs(p.height - f.height) <= o.acromion_height_window_mm;
+      },
+      [](const Local& p) { return p.height; });
+}
+
+std::optional<Vec3> abducted_pectoral_insertion_on_scan(const Points& scan_vertices, const Vec3& fitted,
+                                                        const SternumFrame& frame,
+                                                        const ShoulderLandmarkOptions& o) {
+  const Local f = local(frame, fitted);
+  const double breadth = o.pectoral_breadth * frame.length_mm, w = o.strip_half_width_mm;
+  return best_in_strip(
+      scan_vertices, fitted, frame, o,
+      [&](const Local& p) { return std::abs(p.lateral - breadth) <= w && std::abs(p.height - f.height) <= w; },
+      [](const Local& p) { return p.front; });
+}
+
+}  // namespace breastfit::fit

@@ -1,0 +1,120 @@
+// The acromion, the mid-axillary point and the pectoral insertion placed on a synthetic supine scan by the sternum's
+// proportions, from fitted points as far off as the landmark-free fit leaves them.
+#include "breastfit/fit/shoulder_landmarks.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "fit/synth_anatomy.h"
+
+namespace breastfit::fit {
+namespace {
+
+using namespace test_anatomy;  // the synthetic torsos, their truth and body frame
+
+SternumFrame sternum_frame(const synth::SynthCase& c, const std::string& side) {
+  const Frame f = body_frame(c);
+  SternumFrame s;
+  s.notch = truth(c, "sternal_notch");
+  s.length_mm = (truth(c, "sternal_notch") - truth(c, "xiphoid")).norm();
+  s.up = f.up;
+  s.front = f.front;
+  s.lateral = f.up.cross(f.front);
+  if (s.lateral.dot(truth(c, "nipple_L") - truth(c, "nipple_R")) < 0) s.lateral = -s.lateral;
+  if (side == "R") s.lateral = -s.lateral;
+  return s;
+}
+
+TEST(ShoulderLandmarks, MidaxillaryPointOnTheChestWallAtTheSternumsProportion) {
+  const synth::SynthCase& c = synth_case(synth::PoseType::Supine);
+  const ShoulderLandmarkOptions o;
+  for (const char* side : {"R", "L"}) {
+    const SternumFrame f = sternum_frame(c, side);
+    const Vec3 truth_point = truth(c, std::string("midaxillary_") + side);
+    const Vec3 fitted = truth_point + 15.0 * f.up;  // risen with the abducted arm
+    const auto found = midaxillary_on_scan(c.scan.V, fitted, f);
+    ASSERT_TRUE(found) << side;
+    const Vec3 d = *found - f.notch;
+    EXPECT_NEAR(d.dot(f.up), -o.midaxillary_drop * f.length_mm, o.strip_half_width_mm) << side;
+    EXPECT_NEAR(d.dot(f.front), (fitted - f.notch).dot(f.front), o.strip_half_width_mm) << side;
+    // On the side of the chest: of the strip's vertices, the one nearest the fitted point across
+    // the body (not the other side, not the arm beyond the chest wall).
+    EXPECT_GT(d.dot(f.lateral), 0.5 * f.length_mm) << side;
+    const double across = std::abs(d.dot(f.lateral) - (fitted - f.notch).dot(f.lateral));
+    for (Index i = 0; i < c.scan.V.rows(); ++i) {
+      const Vec3 q = c.scan.V.row(i).transpose() - f.notch;
+      if (std::abs(q.dot(f.up) + o.midaxillary_drop * f.length_mm) > o.strip_half_width_mm) continue;
+      if (std::abs(q.dot(f.front) - (fitted - f.notch).dot(f.front)) > o.strip_half_width_mm) continue;
+      EXPECT_GE(std::abs(q.dot(f.lateral) - (fitted - f.notch).dot(f.lateral)), across) << side;
+    }
+  }
+}
+
+TEST(ShoulderLandmarks, AcromionOnTopOfTheShoulderAtTheSternumsProportion) {
+  const synth::SynthCase& c = synth_case(synth::PoseType::Supine);
+  const ShoulderLandmarkOptions o;
+  for (const char* side : {"R", "L"}) {
+    const SternumFrame f = sternum_frame(c, side);
+    const Vec3 fitted = truth(c, std::string("acromion_") + side);
+    const auto found = acromion_on_scan(c.scan.V, fitted, f);
+    ASSERT_TRUE(found) << side;
+    const Vec3 d = *found - f.notch;
+    const double breadth = o.acromion_breadth * f.length_mm;
+    EXPECT_NEAR(d.dot(f.lateral), breadth, o.strip_half_width_mm) << side;
+    // The top of the strip: no scan vertex in it lies higher.
+    const double front = (fitted - f.notch).dot(f.front), height = (fitted - f.notch).dot(f.up);
+    for (Index i = 0; i < c.scan.V.rows(); ++i) {
+      const Vec3 q = c.scan.V.row(i).transpose() - f.notch;
+      if (std::abs(q.dot(f.lateral) - breadth) > o.strip_half_width_mm) continue;
+      if (std::abs(q.dot(f.front) - front) > o.strip_half_width_mm) continue;
+      if (std::abs(q.dot(f.up) - height) > o.acromion_height_window_mm) continue;
+      EXPECT_LE(q.dot(f.up), d.dot(f.up)) << side;
+    }
+  }
+}
+
+TEST(ShoulderLandmarks, PectoralInsertionOnTheFrontOfTheArmAtTheSternumsProportion) {
+  const synth::SynthCase& c = synth_case(synth::PoseType::Supine);
+  const ShoulderLandmarkOptions o;
+  for (const char* side : {"R", "L"}) {
+    const SternumFrame f = sternum_frame(c, side);
+    const Vec3 fitted = truth(c, std::string("pectoral_insertion_") + side);
+    const auto found = abducted_pectoral_insertion_on_scan(c.scan.V, fitted, f);
+    ASSERT_TRUE(found) << side;
+    const Vec3 d = *found - f.notch;
+    const double breadth = o.pectoral_breadth * f.length_mm, height = (fitted - f.notch).dot(f.up);
+    EXPECT_NEAR(d.dot(f.lateral), breadth, o.strip_half_width_mm) << side;
+    EXPECT_NEAR(d.dot(f.up), height, o.strip_half_width_mm) << side;
+    // The front of the strip: no scan vertex in it lies farther forward.
+    for (Index i = 0; i < c.scan.V.rows(); ++i) {
+      const Vec3 q = c.scan.V.row(i).transpose() - f.notch;
+      if (std::abs(q.dot(f.lateral) - breadth) > o.strip_half_width_mm) continue;
+      if (std::abs(q.dot(f.up) - height) > o.strip_half_width_mm) continue;
+      EXPECT_LE(q.dot(f.front), d.dot(f.front)) << side;
+    }
+  }
+}
+
+TEST(ShoulderLandmarks, RefusesWhenUnsure) {
+  const synth::SynthCase& c = synth_case(synth::PoseType::Supine);
+  const SternumFrame f = sternum_frame(c, "R");
+  const Vec3 midaxillary = truth(c, "midaxillary_R"), acromion = truth(c, "acromion_R");
+  // No scan.
+  EXPECT_FALSE(midaxillary_on_scan(Points(0, 3), midaxillary, f));
+  EXPECT_FALSE(acromion_on_scan(Points(0, 3), acromion, f));
+  // A fitted point far from where the proportions put it (the point found would move too far).
+  EXPECT_FALSE(midaxillary_on_scan(c.scan.V, midaxillary + 60.0 * f.up, f));
+  EXPECT_FALSE(acromion_on_scan(c.scan.V, acromion + 60.0 * f.up + 60.0 * f.lateral, f));
+  // No sternum.
+  SternumFrame degenerate = f;
+  degenerate.length_mm = 0;
+  EXPECT_FALSE(midaxillary_on_scan(c.scan.V, midaxillary, degenerate));
+  EXPECT_FALSE(acromion_on_scan(c.scan.V, acromion, degenerate));
+  EXPECT_FALSE(abducted_pectoral_insertion_on_scan(c.scan.V, truth(c, "pectoral_insertion_R"), degenerate));
+  EXPECT_FALSE(abducted_pectoral_insertion_on_scan(Points(0, 3), truth(c, "pectoral_insertion_R"), f));
+}
+
+}  // namespace
+}  // namespace breastfit::fit
