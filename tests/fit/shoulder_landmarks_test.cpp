@@ -80,11 +80,10 @@ TEST(ShoulderLandmarks, PectoralInsertionOnTheFrontOfTheArmAtTheSternumsProporti
   const ShoulderLandmarkOptions o;
   for (const char* side : {"R", "L"}) {
     const SternumFrame f = sternum_frame(c, side);
-    const Vec3 fitted = truth(c, std::string("pectoral_insertion_") + side);
-    const auto found = abducted_pectoral_insertion_on_scan(c.scan.V, fitted, f);
+    const auto found = abducted_pectoral_insertion_on_scan(c.scan.V, f);
     ASSERT_TRUE(found) << side;
     const Vec3 d = *found - f.notch;
-    const double breadth = o.pectoral_breadth * f.length_mm, height = (fitted - f.notch).dot(f.up);
+    const double breadth = o.pectoral_breadth * f.length_mm, height = -o.pectoral_drop * f.length_mm;
     EXPECT_NEAR(d.dot(f.lateral), breadth, o.strip_half_width_mm) << side;
     EXPECT_NEAR(d.dot(f.up), height, o.strip_half_width_mm) << side;
     // The front of the strip: no scan vertex in it lies farther forward.
@@ -95,6 +94,30 @@ TEST(ShoulderLandmarks, PectoralInsertionOnTheFrontOfTheArmAtTheSternumsProporti
       EXPECT_LE(q.dot(f.front), d.dot(f.front)) << side;
     }
   }
+}
+
+TEST(ShoulderLandmarks, HangingPectoralInsertionOnTheArmsFrontAtTheSternumsProportion) {
+  const synth::SynthCase& c = synth_case(synth::PoseType::Standing);
+  const ShoulderLandmarkOptions o;
+  for (const char* side : {"R", "L"}) {
+    const SternumFrame f = sternum_frame(c, side);
+    // The arm's front as the anterior axillary fold gives it: about 8 mm too low.
+    const Vec3 arm_front = truth(c, std::string("pectoral_insertion_") + side) - 8.0 * f.up;
+    const auto found = hanging_pectoral_insertion_on_scan(c.scan.V, arm_front, f);
+    ASSERT_TRUE(found) << side;
+    const Vec3 d = *found - f.notch, a = arm_front - f.notch;
+    const double height = -o.hanging_pectoral_drop * f.length_mm;
+    EXPECT_NEAR(d.dot(f.up), height, o.strip_half_width_mm) << side;
+    EXPECT_NEAR(d.dot(f.lateral), a.dot(f.lateral), o.strip_half_width_mm) << side;
+    // The front of the strip: no scan vertex in it lies farther forward.
+    for (Index i = 0; i < c.scan.V.rows(); ++i) {
+      const Vec3 q = c.scan.V.row(i).transpose() - f.notch;
+      if (std::abs(q.dot(f.up) - height) > o.strip_half_width_mm) continue;
+      if (std::abs(q.dot(f.lateral) - a.dot(f.lateral)) > o.strip_half_width_mm) continue;
+      EXPECT_LE(q.dot(f.front), d.dot(f.front)) << side;
+    }
+  }
+  EXPECT_FALSE(hanging_pectoral_insertion_on_scan(Points(0, 3), truth(c, "pectoral_insertion_R"), sternum_frame(c, "R")));
 }
 
 TEST(ShoulderLandmarks, RefusesWhenUnsure) {
@@ -112,8 +135,8 @@ TEST(ShoulderLandmarks, RefusesWhenUnsure) {
   degenerate.length_mm = 0;
   EXPECT_FALSE(midaxillary_on_scan(c.scan.V, midaxillary, degenerate));
   EXPECT_FALSE(acromion_on_scan(c.scan.V, acromion, degenerate));
-  EXPECT_FALSE(abducted_pectoral_insertion_on_scan(c.scan.V, truth(c, "pectoral_insertion_R"), degenerate));
-  EXPECT_FALSE(abducted_pectoral_insertion_on_scan(Points(0, 3), truth(c, "pectoral_insertion_R"), f));
+  EXPECT_FALSE(abducted_pectoral_insertion_on_scan(c.scan.V, degenerate));
+  EXPECT_FALSE(abducted_pectoral_insertion_on_scan(Points(0, 3), f));
 }
 
 }  // namespace

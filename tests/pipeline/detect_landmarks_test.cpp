@@ -34,7 +34,8 @@ TEST(DetectLandmarks, FindsEveryLandmarkOnTheScanNearTheTruth) {
     const bool fitted_or_proportion =
         l.method == "fitted template, snapped to the scan" || l.method == "sternum's proportions on the scan";
     if (l.name.rfind("pectoral_insertion_", 0) == 0)
-      EXPECT_TRUE(l.method == "anterior axillary fold on the scan" || fitted_or_proportion) << l.name << ": " << l.method;
+      EXPECT_TRUE(l.method.rfind("anterior axillary fold on the scan", 0) == 0 || fitted_or_proportion)
+          << l.name << ": " << l.method;
     if (l.name.rfind("acromion_", 0) == 0 || l.name.rfind("midaxillary_", 0) == 0)
       EXPECT_TRUE(fitted_or_proportion) << l.name << ": " << l.method;
     for (const auto& t : c.truth_landmarks)

@@ -16,11 +16,10 @@ Local local(const SternumFrame& f, const Vec3& p) {
   return {d.dot(f.up), d.dot(f.front), d.dot(f.lateral)};
 }
 
-// The scan vertex with the highest `score` among those `in` the strip, when it lies within
-// `max_shift_mm` of the fitted point; nullopt otherwise (or without a sternum).
+// The scan vertex with the highest `score` among those `in` the strip; nullopt when there is none
+// (or without a sternum).
 template <class InStrip, class Score>
-std::optional<Vec3> best_in_strip(const Points& V, const Vec3& fitted, const SternumFrame& frame,
-                                  const ShoulderLandmarkOptions& o, InStrip in, Score score) {
+std::optional<Vec3> best_in_strip(const Points& V, const SternumFrame& frame, InStrip in, Score score) {
   if (!(frame.length_mm > 0)) return std::nullopt;
   Index best = -1;
   double top = -std::numeric_limits<double>::infinity();
@@ -34,8 +33,12 @@ std::optional<Vec3> best_in_strip(const Points& V, const Vec3& fitted, const Ste
     }
   }
   if (best < 0) return std::nullopt;
-  const Vec3 p = V.row(best).transpose();
-  if ((p - fitted).norm() > o.max_shift_mm) return std::nullopt;
+  return V.row(best).transpose();
+}
+
+// `p` unless it lies farther than max_shift_mm from the fitted point.
+std::optional<Vec3> near_fitted(const std::optional<Vec3>& p, const Vec3& fitted, const ShoulderLandmarkOptions& o) {
+  if (!p || (*p - fitted).norm() > o.max_shift_mm) return std::nullopt;
   return p;
 }
 
@@ -45,33 +48,48 @@ std::optional<Vec3> midaxillary_on_scan(const Points& scan_vertices, const Vec3&
                                         const ShoulderLandmarkOptions& o) {
   const Local f = local(frame, fitted);
   const double height = -o.midaxillary_drop * frame.length_mm, w = o.strip_half_width_mm;
-  return best_in_strip(
-      scan_vertices, fitted, frame, o,
+  const auto p = best_in_strip(
+      scan_vertices, frame,
       [&](const Local& p) { return std::abs(p.height - height) <= w && std::abs(p.front - f.front) <= w; },
       [&](const Local& p) { return -std::abs(p.lateral - f.lateral); });
+  return near_fitted(p, fitted, o);
 }
 
 std::optional<Vec3> acromion_on_scan(const Points& scan_vertices, const Vec3& fitted, const SternumFrame& frame,
                                      const ShoulderLandmarkOptions& o) {
   const Local f = local(frame, fitted);
   const double breadth = o.acromion_breadth * frame.length_mm, w = o.strip_half_width_mm;
-  return best_in_strip(
-      scan_vertices, fitted, frame, o,
+  const auto p = best_in_strip(
+      scan_vertices, frame,
       [&](const Local& p) {
         return std::abs(p.lateral - breadth) <= w && std::abs(p.front - f.front) <= w &&
                std::abs(p.height - f.height) <= o.acromion_height_window_mm;
       },
       [](const Local& p) { return p.height; });
+  return near_fitted(p, fitted, o);
 }
 
-std::optional<Vec3> abducted_pectoral_insertion_on_scan(const Points& scan_vertices, const Vec3& fitted,
-                                                        const SternumFrame& frame,
+std::optional<Vec3> abducted_pectoral_insertion_on_scan(const Points& scan_vertices, const SternumFrame& frame,
                                                         const ShoulderLandmarkOptions& o) {
-  const Local f = local(frame, fitted);
-  const double breadth = o.pectoral_breadth * frame.length_mm, w = o.strip_half_width_mm;
+  const double breadth = o.pectoral_breadth * frame.length_mm, height = -o.pectoral_drop * frame.length_mm;
+  const double w = o.strip_half_width_mm;
   return best_in_strip(
-      scan_vertices, fitted, frame, o,
-      [&](const Local& p) { return std::abs(p.lateral - breadth) <= w && std::abs(p.height - f.height) <= w; },
+      scan_vertices, frame,
+      [&](const Local& p) { return std::abs(p.lateral - breadth) <= w && std::abs(p.height - height) <= w; },
+      [](const Local& p) { return p.front; });
+}
+
+std::optional<Vec3> hanging_pectoral_insertion_on_scan(const Points& scan_vertices, const Vec3& arm_front,
+                                                       const SternumFrame& frame,
+                                                       const ShoulderLandmarkOptions& o) {
+  const Local a = local(frame, arm_front);
+  const double height = -o.hanging_pectoral_drop * frame.length_mm, w = o.strip_half_width_mm;
+  return best_in_strip(
+      scan_vertices, frame,
+      [&](const Local& p) {
+        return std::abs(p.height - height) <= w && std::abs(p.lateral - a.lateral) <= w &&
+               p.front > a.front - o.max_behind_mm;
+      },
       [](const Local& p) { return p.front; });
 }
 

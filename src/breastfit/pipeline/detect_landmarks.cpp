@@ -85,7 +85,7 @@ std::optional<Vec3> shoulder_landmark_refined(const model::RiggedModel& model, c
   if (!frame || !fitted) return std::nullopt;
   const Points& V = scan.mesh().V;
   return acromion ? fit::acromion_on_scan(V, *fitted, *frame)
-         : pectoral ? fit::abducted_pectoral_insertion_on_scan(V, *fitted, *frame)
+         : pectoral ? fit::abducted_pectoral_insertion_on_scan(V, *frame)
                     : fit::midaxillary_on_scan(V, *fitted, *frame);
 }
 
@@ -122,6 +122,13 @@ DetectedLandmarks landmarks_on_scan(const model::RiggedModel& model, const std::
       if (const auto refined = pectoral_insertion_refined(model, r.fit, p.name, scan)) {
         d.position_mm = *refined;  // a scan vertex
         d.method = "anterior axillary fold on the scan";
+        // Its height by the sternum's proportions (fit/shoulder_landmarks.h): the first slice
+        // showing the crease lies below the fold's border.
+        if (const auto frame = sternum_frame(model, r.fit, p.name.substr(p.name.size() - 1)))
+          if (const auto level = fit::hanging_pectoral_insertion_on_scan(scan.mesh().V, *refined, *frame)) {
+            d.position_mm = *level;
+            d.method = "anterior axillary fold on the scan, at the sternum's proportion";
+          }
         out.landmarks.push_back(d);
         continue;
       }

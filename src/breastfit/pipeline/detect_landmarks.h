@@ -23,7 +23,8 @@ struct DetectedLandmark {
   double confidence = 0;
   /// "fitted template, snapped to the scan", or the anatomy that held or refined it ("breast tip on
   /// the scan", "jugular notch on the scan", "breast fold on the scan", "anterior axillary fold on the
-  /// scan": the pectoral insertion, fit/pectoral_insertion.h; "sternum's proportions on the scan":
+  /// scan": the pectoral insertion, fit/pectoral_insertion.h, "..., at the sternum's proportion" when
+  /// its height is then taken from the sternum; "sternum's proportions on the scan":
   /// fit/shoulder_landmarks.h)
   std::string method;
 };
