@@ -3,14 +3,14 @@
 /// sternum's proportions (the arms on boards; the pectoral insertion's height also arms hanging).
 ///
 /// With the arms abducted the template's skin over the shoulder and the side of the chest follows
-/// the arm: the fitted acromion slides onto the deltoid, 9–12 mm too lateral, and the fitted
+/// the arm: the fitted acromion slides onto the deltoid, 9–12 mm too lateral, the fitted
 /// mid-axillary point rises with the axilla, 11–15 mm too high, and the pectoral insertion stays on
 /// the chest, about 11 mm too medial (the signed errors of the landmark-free fits of the 14
 /// benchmark and 16 generated supine torsos; arms hanging, the first two do not happen). The
 /// skeleton does not follow the arm that way: on the 30 benchmark and generated torsos used to
 /// choose them, standing and supine, the mid-axillary point lies 0.73 ± 0.01 sternum lengths (notch
-/// to xiphoid) below the notch, and on the supine ones the acromio-clavicular joint 0.79 ± 0.03 and
-/// the pectoral insertion 1.05 ± 0.03 sternum lengths to the side of the midline (16 hold-out
+/// to xiphoid) below the notch, and on the supine ones the acromio-clavicular joint 0.79 ± 0.04 and
+/// the pectoral insertion 1.05 ± 0.04 sternum lengths to the side of the midline (16 hold-out
 /// torsos: 0.73, 0.79, 1.04). The detectors take those proportions from the fitted sternum and the
 /// rest from the scan:
 /// - the mid-axillary point: the scan's chest wall at that height in the fitted point's coronal
@@ -28,12 +28,14 @@
 ///
 /// Arms hanging, the pectoral insertion found at the anterior axillary fold (fit/pectoral_insertion.h)
 /// lies 7–8 mm too low on average (the first slice showing the crease is below the fold's border);
-/// the truth lies 0.50 ± 0.03 sternum lengths below the notch. hanging_pectoral_insertion_on_scan
-/// keeps the arm found there and takes its most anterior point at that height.
+/// the truth lies 0.50 ± 0.03 sternum lengths below the notch (hold-out: 0.51).
+/// hanging_pectoral_insertion_on_scan keeps the arm found there and takes its most anterior point
+/// at that height.
 ///
-/// Used by `breastfit landmarks` (pipeline/detect_landmarks.h) after the fit, for arms on boards
-/// only (standing, the fitted points are no worse than these: the arm hangs against the side of the
-/// chest and the shoulder is not abducted).
+/// Used by `breastfit landmarks` (pipeline/detect_landmarks.h) after the fit; the acromion and the
+/// mid-axillary point for arms on boards only (arms hanging the fitted points were no worse: the
+/// arm hangs against the side of the chest, and the shoulder is not abducted). Not held in the fit
+/// (`register` is unchanged).
 #include <optional>
 
 #include "breastfit/core/types.h"
