@@ -27,6 +27,19 @@ SternumFrame sternum_frame(const synth::SynthCase& c, const std::string& side) {
   return s;
 }
 
+using InFrame = SternumCoordinates;
+
+// No scan vertex `in` the strip scores higher than the point found.
+template <class InStrip, class Score>
+void expect_best_of_strip(const Points& V, const SternumFrame& f, const Vec3& found, InStrip in, Score score,
+                          const char* side) {
+  const double best = score(sternum_coordinates(f, found));
+  for (Index i = 0; i < V.rows(); ++i) {
+    const InFrame q = sternum_coordinates(f, V.row(i).transpose());
+    if (in(q)) EXPECT_LE(score(q), best) << side;
+  }
+}
+
 TEST(ShoulderLandmarks, MidaxillaryPointOnTheChestWallAtTheSternumsProportion) {
   const synth::SynthCase& c = synth_case(synth::PoseType::Supine);
   const ShoulderLandmarkOptions o;
@@ -42,13 +55,12 @@ TEST(ShoulderLandmarks, MidaxillaryPointOnTheChestWallAtTheSternumsProportion) {
     // On the side of the chest: of the strip's vertices, the one nearest the fitted point across
     // the body (not the other side, not the arm beyond the chest wall).
     EXPECT_GT(d.dot(f.lateral), 0.5 * f.length_mm) << side;
-    const double across = std::abs(d.dot(f.lateral) - (fitted - f.notch).dot(f.lateral));
-    for (Index i = 0; i < c.scan.V.rows(); ++i) {
-      const Vec3 q = c.scan.V.row(i).transpose() - f.notch;
-      if (std::abs(q.dot(f.up) + o.midaxillary_drop * f.length_mm) > o.strip_half_width_mm) continue;
-      if (std::abs(q.dot(f.front) - (fitted - f.notch).dot(f.front)) > o.strip_half_width_mm) continue;
-      EXPECT_GE(std::abs(q.dot(f.lateral) - (fitted - f.notch).dot(f.lateral)), across) << side;
-    }
+    const InFrame a = sternum_coordinates(f, fitted);
+    const double height = -o.midaxillary_drop * f.length_mm, w = o.strip_half_width_mm;
+    expect_best_of_strip(
+        c.scan.V, f, *found,
+        [&](const InFrame& q) { return std::abs(q.height - height) <= w && std::abs(q.front - a.front) <= w; },
+        [&](const InFrame& q) { return -std::abs(q.lateral - a.lateral); }, side);
   }
 }
 
@@ -64,14 +76,15 @@ TEST(ShoulderLandmarks, AcromionOnTopOfTheShoulderAtTheSternumsProportion) {
     const double breadth = o.acromion_breadth * f.length_mm;
     EXPECT_NEAR(d.dot(f.lateral), breadth, o.strip_half_width_mm) << side;
     // The top of the strip: no scan vertex in it lies higher.
-    const double front = (fitted - f.notch).dot(f.front), height = (fitted - f.notch).dot(f.up);
-    for (Index i = 0; i < c.scan.V.rows(); ++i) {
-      const Vec3 q = c.scan.V.row(i).transpose() - f.notch;
-      if (std::abs(q.dot(f.lateral) - breadth) > o.strip_half_width_mm) continue;
-      if (std::abs(q.dot(f.front) - front) > o.strip_half_width_mm) continue;
-      if (std::abs(q.dot(f.up) - height) > o.acromion_height_window_mm) continue;
-      EXPECT_LE(q.dot(f.up), d.dot(f.up)) << side;
-    }
+    const InFrame a = sternum_coordinates(f, fitted);
+    const double w = o.strip_half_width_mm;
+    expect_best_of_strip(
+        c.scan.V, f, *found,
+        [&](const InFrame& q) {
+          return std::abs(q.lateral - breadth) <= w && std::abs(q.front - a.front) <= w &&
+                 std::abs(q.height - a.height) <= o.acromion_height_window_mm;
+        },
+        [](const InFrame& q) { return q.height; }, side);
   }
 }
 
@@ -87,12 +100,11 @@ TEST(ShoulderLandmarks, PectoralInsertionOnTheFrontOfTheArmAtTheSternumsProporti
     EXPECT_NEAR(d.dot(f.lateral), breadth, o.strip_half_width_mm) << side;
     EXPECT_NEAR(d.dot(f.up), height, o.strip_half_width_mm) << side;
     // The front of the strip: no scan vertex in it lies farther forward.
-    for (Index i = 0; i < c.scan.V.rows(); ++i) {
-      const Vec3 q = c.scan.V.row(i).transpose() - f.notch;
-      if (std::abs(q.dot(f.lateral) - breadth) > o.strip_half_width_mm) continue;
-      if (std::abs(q.dot(f.up) - height) > o.strip_half_width_mm) continue;
-      EXPECT_LE(q.dot(f.front), d.dot(f.front)) << side;
-    }
+    const double w = o.strip_half_width_mm;
+    expect_best_of_strip(
+        c.scan.V, f, *found,
+        [&](const InFrame& q) { return std::abs(q.lateral - breadth) <= w && std::abs(q.height - height) <= w; },
+        [](const InFrame& q) { return q.front; }, side);
   }
 }
 
@@ -109,13 +121,16 @@ TEST(ShoulderLandmarks, HangingPectoralInsertionOnTheArmsFrontAtTheSternumsPropo
     const double height = -o.hanging_pectoral_drop * f.length_mm;
     EXPECT_NEAR(d.dot(f.up), height, o.strip_half_width_mm) << side;
     EXPECT_NEAR(d.dot(f.lateral), a.dot(f.lateral), o.strip_half_width_mm) << side;
-    // The front of the strip: no scan vertex in it lies farther forward.
-    for (Index i = 0; i < c.scan.V.rows(); ++i) {
-      const Vec3 q = c.scan.V.row(i).transpose() - f.notch;
-      if (std::abs(q.dot(f.up) - height) > o.strip_half_width_mm) continue;
-      if (std::abs(q.dot(f.lateral) - a.dot(f.lateral)) > o.strip_half_width_mm) continue;
-      EXPECT_LE(q.dot(f.front), d.dot(f.front)) << side;
-    }
+    // The front of the strip (behind the arm's front only so far): no scan vertex in it lies
+    // farther forward.
+    const double w = o.strip_half_width_mm;
+    expect_best_of_strip(
+        c.scan.V, f, *found,
+        [&](const InFrame& q) {
+          return std::abs(q.height - height) <= w && std::abs(q.lateral - a.dot(f.lateral)) <= w &&
+                 q.front > a.dot(f.front) - o.max_behind_mm;
+        },
+        [](const InFrame& q) { return q.front; }, side);
   }
   EXPECT_FALSE(hanging_pectoral_insertion_on_scan(Points(0, 3), truth(c, "pectoral_insertion_R"), sternum_frame(c, "R")));
 }

@@ -4,17 +4,15 @@
 #include <limits>
 
 namespace breastfit::fit {
-namespace {
 
-// A point in the frame: height above the notch, depth in front of it, distance to the side.
-struct Local {
-  double height, front, lateral;
-};
-
-Local local(const SternumFrame& f, const Vec3& p) {
+SternumCoordinates sternum_coordinates(const SternumFrame& f, const Vec3& p) {
   const Vec3 d = p - f.notch;
   return {d.dot(f.up), d.dot(f.front), d.dot(f.lateral)};
 }
+
+namespace {
+
+using Local = SternumCoordinates;
 
 // The scan vertex with the highest `score` among those `in` the strip; nullopt when there is none
 // (or without a sternum).
@@ -24,7 +22,7 @@ std::optional<Vec3> best_in_strip(const Points& V, const SternumFrame& frame, In
   Index best = -1;
   double top = -std::numeric_limits<double>::infinity();
   for (Index i = 0; i < V.rows(); ++i) {
-    const Local p = local(frame, V.row(i).transpose());
+    const Local p = sternum_coordinates(frame, V.row(i).transpose());
     if (!in(p)) continue;
     const double s = score(p);
     if (s > top) {
@@ -46,7 +44,7 @@ std::optional<Vec3> near_fitted(const std::optional<Vec3>& p, const Vec3& fitted
 
 std::optional<Vec3> midaxillary_on_scan(const Points& scan_vertices, const Vec3& fitted, const SternumFrame& frame,
                                         const ShoulderLandmarkOptions& o) {
-  const Local f = local(frame, fitted);
+  const Local f = sternum_coordinates(frame, fitted);
   const double height = -o.midaxillary_drop * frame.length_mm, w = o.strip_half_width_mm;
   const auto p = best_in_strip(
       scan_vertices, frame,
@@ -57,7 +55,7 @@ std::optional<Vec3> midaxillary_on_scan(const Points& scan_vertices, const Vec3&
 
 std::optional<Vec3> acromion_on_scan(const Points& scan_vertices, const Vec3& fitted, const SternumFrame& frame,
                                      const ShoulderLandmarkOptions& o) {
-  const Local f = local(frame, fitted);
+  const Local f = sternum_coordinates(frame, fitted);
   const double breadth = o.acromion_breadth * frame.length_mm, w = o.strip_half_width_mm;
   const auto p = best_in_strip(
       scan_vertices, frame,
@@ -82,7 +80,7 @@ std::optional<Vec3> abducted_pectoral_insertion_on_scan(const Points& scan_verti
 std::optional<Vec3> hanging_pectoral_insertion_on_scan(const Points& scan_vertices, const Vec3& arm_front,
                                                        const SternumFrame& frame,
                                                        const ShoulderLandmarkOptions& o) {
-  const Local a = local(frame, arm_front);
+  const Local a = sternum_coordinates(frame, arm_front);
   const double height = -o.hanging_pectoral_drop * frame.length_mm, w = o.strip_half_width_mm;
   return best_in_strip(
       scan_vertices, frame,

@@ -51,6 +51,15 @@ struct SternumFrame {
   Vec3 lateral = Vec3::UnitX(); ///< towards the side whose landmark is sought (unit, orthogonal to both)
 };
 
+/// A point's coordinates in the frame (mm): height above the notch, depth in front of it, distance
+/// towards the side.
+struct SternumCoordinates {
+  double height = 0, front = 0, lateral = 0;
+};
+
+/// `p` in `frame`'s coordinates.
+SternumCoordinates sternum_coordinates(const SternumFrame& frame, const Vec3& p);
+
 /// The proportions and the strips' sizes.
 struct ShoulderLandmarkOptions {
   double midaxillary_drop = 0.73;  ///< the mid-axillary point's depth below the notch, in sternum lengths
