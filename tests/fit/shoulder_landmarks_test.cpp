@@ -135,6 +135,24 @@ TEST(ShoulderLandmarks, HangingPectoralInsertionOnTheArmsFrontAtTheSternumsPropo
   EXPECT_FALSE(hanging_pectoral_insertion_on_scan(Points(0, 3), truth(c, "pectoral_insertion_R"), sternum_frame(c, "R")));
 }
 
+TEST(ShoulderLandmarks, ArmsAbductedOnTheScanOfASupineTorsoOnly) {
+  const synth::SynthCase& supine = synth_case(synth::PoseType::Supine);
+  const synth::SynthCase& standing = synth_case(synth::PoseType::Standing);
+  EXPECT_TRUE(arms_abducted_on_scan(supine.scan.V, sternum_frame(supine, "R")));
+  EXPECT_TRUE(arms_abducted_on_scan(supine.scan.V, sternum_frame(supine, "L")));
+  EXPECT_FALSE(arms_abducted_on_scan(standing.scan.V, sternum_frame(standing, "R")));
+  // One arm cut away: not both arms out.
+  const SternumFrame f = sternum_frame(supine, "R");
+  Points one_arm(supine.scan.V.rows(), 3);
+  Index n = 0;
+  for (Index i = 0; i < supine.scan.V.rows(); ++i)
+    if (sternum_coordinates(f, supine.scan.V.row(i).transpose()).lateral < 0.9 * f.length_mm)
+      one_arm.row(n++) = supine.scan.V.row(i);
+  one_arm.conservativeResize(n, 3);
+  EXPECT_FALSE(arms_abducted_on_scan(one_arm, f));
+  EXPECT_FALSE(arms_abducted_on_scan(Points(0, 3), f));
+}
+
 TEST(ShoulderLandmarks, RefusesWhenUnsure) {
   const synth::SynthCase& c = synth_case(synth::PoseType::Supine);
   const SternumFrame f = sternum_frame(c, "R");

@@ -1,5 +1,6 @@
 #include "breastfit/fit/shoulder_landmarks.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -41,6 +42,19 @@ std::optional<Vec3> near_fitted(const std::optional<Vec3>& p, const Vec3& fitted
 }
 
 }  // namespace
+
+bool arms_abducted_on_scan(const Points& scan_vertices, const SternumFrame& frame,
+                           const ShoulderLandmarkOptions& o) {
+  if (!(frame.length_mm > 0)) return false;
+  double out = -std::numeric_limits<double>::infinity(), in = out;  // the frame's side, the other
+  for (Index i = 0; i < scan_vertices.rows(); ++i) {
+    const Local p = sternum_coordinates(frame, scan_vertices.row(i).transpose());
+    if (p.height > 0 || p.height < -o.reach_band * frame.length_mm) continue;
+    out = std::max(out, p.lateral);
+    in = std::max(in, -p.lateral);
+  }
+  return std::min(out, in) >= o.abducted_reach * frame.length_mm;
+}
 
 std::optional<Vec3> midaxillary_on_scan(const Points& scan_vertices, const Vec3& fitted, const SternumFrame& frame,
                                         const ShoulderLandmarkOptions& o) {

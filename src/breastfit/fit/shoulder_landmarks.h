@@ -34,8 +34,8 @@
 ///
 /// Used by `breastfit landmarks` (pipeline/detect_landmarks.h) after the fit; the acromion and the
 /// mid-axillary point for arms on boards only (arms hanging the fitted points were no worse: the
-/// arm hangs against the side of the chest, and the shoulder is not abducted). Not held in the fit
-/// (`register` is unchanged).
+/// arm hangs against the side of the chest, and the shoulder is not abducted), the caller checking
+/// arms_abducted_on_scan. Not held in the fit (`register` is unchanged).
 #include <optional>
 
 #include "breastfit/core/types.h"
@@ -71,7 +71,19 @@ struct ShoulderLandmarkOptions {
   double strip_half_width_mm = 4.0;  ///< half-width of the strips (height and antero-posterior)
   double acromion_height_window_mm = 40.0;  ///< the shoulder's top is sought this far above and below the fitted acromion
   double max_shift_mm = 40.0;      ///< a point farther than this from the fitted one = refused
+  /// Arms abducted: the scan reaches at least this far to each side of the midline (in sternum
+  /// lengths) between the notch's height and `reach_band` below it (arms on boards 1.29–1.46, arms
+  /// hanging 0.99–1.14 on the 46 benchmark and generated torsos).
+  double abducted_reach = 1.2;
+  double reach_band = 0.4;  ///< the band's depth below the notch, in sternum lengths
 };
+
+/// Whether the scan's arms reach out sideways at the shoulders on both sides (`abducted_reach`): the
+/// proportions below are those of abducted arms. A wide standing torso can pass the orientation
+/// search's supine test (a template-made one of the test suite with its arms 20° out did, reaching
+/// 1.11 sternum lengths; its insertions went 50–60 mm off).
+bool arms_abducted_on_scan(const Points& scan_vertices, const SternumFrame& frame,
+                           const ShoulderLandmarkOptions& options = {});
 
 /// The mid-axillary point on the scan, or nullopt when unsure.
 /// \param scan_vertices the scan (mm), \param fitted the fitted model's mid-axillary point

@@ -73,16 +73,17 @@ std::optional<Vec3> pectoral_insertion_refined(const model::RiggedModel& model, 
 
 // The acromion, the mid-axillary point and the pectoral insertion refined on the scan by the
 // sternum's proportions (fit/shoulder_landmarks.h), only with the arms on boards (the orientation
-// search's arm pose): there the template's skin over the shoulder and the side of the chest follows
-// the abducted arm.
+// search's arm pose, and the scan's arms reaching out sideways): there the template's skin over the shoulder and
+// the side of the chest follows the abducted arm.
 std::optional<Vec3> shoulder_landmark_refined(const model::RiggedModel& model, const fit::FitResult& fit,
                                               const std::string& name, const fit::ScanTarget& scan) {
   const bool acromion = name.rfind("acromion_", 0) == 0, pectoral = name.rfind("pectoral_insertion_", 0) == 0;
   if (!acromion && !pectoral && name.rfind("midaxillary_", 0) != 0) return std::nullopt;
   if (fit.summary.orientation.arm_pose.rfind("arms abducted", 0) != 0) return std::nullopt;
-  const auto frame = sternum_frame(model, fit, name.substr(name.size() - 1));
+  const std::string side = name.substr(name.size() - 1);
+  const auto frame = sternum_frame(model, fit, side);
   const auto fitted = fitted_landmark(model, fit, name);
-  if (!frame || !fitted) return std::nullopt;
+  if (!frame || !fitted || !fit::arms_abducted_on_scan(scan.mesh().V, *frame)) return std::nullopt;
   const Points& V = scan.mesh().V;
   return acromion ? fit::acromion_on_scan(V, *fitted, *frame)
          : pectoral ? fit::abducted_pectoral_insertion_on_scan(V, *frame)
