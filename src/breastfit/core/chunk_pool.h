@@ -42,24 +42,41 @@ inline void cpu_relax() {
 #endif
 }
 
-/// Spins while `value` still holds `old`, for at most `spin` of wall time, then sleeps until it
-/// changes. Returns the new value.
-inline std::uint32_t wait_for_change(const std::atomic<std::uint32_t>& value, std::uint32_t old,
-                                     std::chrono::nanoseconds spin) {
-  using Clock = std::chrono::steady_clock;
-  const auto until = Clock::now() + spin;
-  for (int k = 0;; ++k) {
-    const std::uint32_t now = value.load(std::memory_order_acquire);
-    if (now != old) return now;
-    if ((k & 63) == 63 && Clock::now() >= until) break;
-    cpu_relax();
+/// A value threads wait on for a change, with its own count of the threads asleep on it: a change
+/// nobody sleeps through costs no system call and touches no shared waiter table.
+struct WaitWord {
+  std::atomic<std::uint32_t> value{0};
+  std::atomic<int> sleepers{0};
+
+  /// Spins while `value` still holds `old`, for at most `spin` of wall time, then sleeps until it
+  /// changes. Returns the new value.
+  std::uint32_t wait_for_change(std::uint32_t old, std::chrono::nanoseconds spin) {
+    using Clock = std::chrono::steady_clock;
+    const auto until = Clock::now() + spin;
+    for (int k = 0;; ++k) {
+      const std::uint32_t now = value.load(std::memory_order_acquire);
+      if (now != old) return now;
+      if ((k & 63) == 63 && Clock::now() >= until) break;
+      cpu_relax();
+    }
+    for (;;) {
+      // Announced before the last look (both sequentially consistent, as in publish()): either
+      // the publisher sees a sleeper and wakes it, or this thread sees the new value.
+      sleepers.fetch_add(1, std::memory_order_seq_cst);
+      if (value.load(std::memory_order_seq_cst) == old) value.wait(old, std::memory_order_seq_cst);
+      sleepers.fetch_sub(1, std::memory_order_relaxed);
+      const std::uint32_t now = value.load(std::memory_order_acquire);
+      if (now != old) return now;
+    }
   }
-  for (;;) {
-    value.wait(old, std::memory_order_acquire);
-    const std::uint32_t now = value.load(std::memory_order_acquire);
-    if (now != old) return now;
+
+  /// Adds `n` to the value and wakes the threads asleep on it, if any. Returns the new value.
+  std::uint32_t publish(std::uint32_t n = 1) {
+    const std::uint32_t now = value.fetch_add(n, std::memory_order_seq_cst) + n;
+    if (sleepers.load(std::memory_order_seq_cst) > 0) value.notify_all();
+    return now;
   }
-}
+};
 
 /// True on a thread while it runs a chunk: a loop inside a chunk runs serially on that thread.
 inline thread_local bool in_chunk = false;
@@ -71,9 +88,9 @@ struct ChunkJob {
   std::uint32_t chunks = 0;
   int max_helpers = 0;
   const std::function<void(std::size_t)>* fn = nullptr;
-  std::atomic<std::uint32_t> next{0};
-  std::atomic<std::uint32_t> done{0};
-  std::atomic<int> helpers{0};
+  alignas(64) std::atomic<std::uint32_t> next{0};  // own cache lines: taken and counted by every thread
+  alignas(64) WaitWord done;                       // chunks finished
+  alignas(64) std::atomic<int> helpers{0};
   std::vector<std::exception_ptr> errors;
 
   void work() {
@@ -85,7 +102,7 @@ struct ChunkJob {
       } catch (...) {
         errors[c] = std::current_exception();
       }
-      if (done.fetch_add(1, std::memory_order_acq_rel) + 1 == chunks) done.notify_all();
+      done.publish();
     }
     in_chunk = outer;
   }
@@ -109,13 +126,10 @@ class ChunkPool {
       job->max_helpers = std::min(threads - 1, start_workers(threads - 1));
       job_ = job;
     }
-    if (job->max_helpers > 0) {
-      generation_.fetch_add(1, std::memory_order_release);
-      generation_.notify_all();
-    }
+    if (job->max_helpers > 0) generation_.publish();
     job->work();
-    for (std::uint32_t d; (d = job->done.load(std::memory_order_acquire)) < job->chunks;)
-      wait_for_change(job->done, d, kSpin);
+    for (std::uint32_t d; (d = job->done.value.load(std::memory_order_acquire)) < job->chunks;)
+      job->done.wait_for_change(d, kSpin);
     {
       std::lock_guard lock(mutex_);
       if (job_ == job) job_.reset();
@@ -143,7 +157,7 @@ class ChunkPool {
   }
 
   [[noreturn]] void work_forever() {
-    std::uint32_t seen = generation_.load(std::memory_order_acquire);
+    std::uint32_t seen = generation_.value.load(std::memory_order_acquire);
     for (;;) {
       std::shared_ptr<ChunkJob> job;
       {
@@ -152,14 +166,14 @@ class ChunkPool {
       }
       if (job && job->helpers.fetch_add(1, std::memory_order_relaxed) < job->max_helpers) job->work();
       job.reset();
-      seen = wait_for_change(generation_, seen, kSpin);
+      seen = generation_.wait_for_change(seen, kSpin);
     }
   }
 
   std::mutex mutex_;
   std::shared_ptr<ChunkJob> job_;  // the loop being run (guarded by mutex_)
   int workers_ = 0;                // guarded by mutex_
-  std::atomic<std::uint32_t> generation_{0};
+  WaitWord generation_;            // counts the loops handed out
 };
 
 }  // namespace detail
