@@ -43,7 +43,7 @@ PHASES = [
     ("write scan_painted.ply", ["breastfit::transfer::write_scan_painted"], None),
     ("write other outputs", ["breastfit::pipeline::write_register_outputs"], None),
     ("rest of register_scan", ["breastfit::pipeline::register_scan"], None),
-    ("OpenMP workers (libgomp, outside a phase)", ["gomp_thread_start"], None),
+    ("pool workers (core/chunk_pool.h, outside a phase)", ["breastfit::detail::ChunkPool::work_forever"], None),
     ("hashing the inputs (provenance)", ["breastfit::io::file_sha256_hex"], None),
     # Eigen's blocked kernels use large stack buffers, so the DWARF unwinder often loses their
     # callers: these samples (mostly the assembly's rank updates, some sparse Cholesky of surface

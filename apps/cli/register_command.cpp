@@ -1,4 +1,6 @@
 // breastfit register SCAN [--landmarks FILE] --out DIR: the paper's registration of the template.
+#include <exception>
+#include <future>
 #include <iostream>
 
 #include "breastfit/core/errors.h"
@@ -48,25 +50,48 @@ void register_register(CLI::App& app, int& exit_code) {
     if (!args->template_path.empty()) inputs.push_back(args->template_path);
     pipeline::check_output_dir(args->out, args->force, inputs);
 
+    // The template is loaded and the inputs hashed for the provenance on another thread while
+    // this one reads the scan and builds its index; a template error still comes before any
+    // error of the options or the scan's preparation, as when it was loaded first.
+    struct Loaded {
+      std::shared_ptr<const model::RiggedModel> model;
+      pipeline::Provenance provenance;
+    };
+    std::future<Loaded> loaded = std::async(std::launch::async, [args] {
+      Loaded l;
+      l.model = std::make_shared<const model::RiggedModel>(load_template(args->template_path, args->template_mesh));
+      l.provenance = pipeline::start_provenance(
+          pipeline::shell_command_line(command_line()),
+          {{"scan", args->scan},
+           {"landmarks", args->no_landmarks ? fs::path() : fs::path(args->landmarks)},
+           {"template", args->template_path.empty() ? model::default_template_path() : fs::path(args->template_path)},
+           {"config", args->config}});
+      return l;
+    });
+
     pipeline::RegisterRequest req;
     req.scan = io::read_mesh(args->scan);
     req.scan_name = args->scan;
     req.units = parse_units_flag(args->units);
     req.landmarks_name = args->landmarks;
     if (!args->landmarks.empty() && !args->no_landmarks) req.landmarks = read_landmarks_warning(args->landmarks);
-    req.model = std::make_shared<const model::RiggedModel>(load_template(args->template_path, args->template_mesh));
+    std::exception_ptr later_error;
+    pipeline::PreparedTarget target;
+    try {
+      req.options = load_fit_options(args->config, args->fit);
+      if (args->no_landmarks) req.options.use_landmarks = false;
+      target = pipeline::prepare_target(req.scan, req.scan_name, req.units, req.options);
+    } catch (...) {
+      later_error = std::current_exception();
+    }
+    Loaded l = loaded.get();
+    if (later_error) std::rethrow_exception(later_error);
+    req.model = l.model;
+    req.provenance = std::move(l.provenance);
     const model::RiggedModel& model = *req.model;
-    req.options = load_fit_options(args->config, args->fit);
-    if (args->no_landmarks) req.options.use_landmarks = false;
 
-    req.provenance = pipeline::start_provenance(
-        pipeline::shell_command_line(command_line()),
-        {{"scan", args->scan},
-         {"landmarks", args->no_landmarks ? fs::path() : fs::path(args->landmarks)},
-         {"template", args->template_path.empty() ? model::default_template_path() : fs::path(args->template_path)},
-         {"config", args->config}});
-
-    const auto result = pipeline::register_scan(req, progress_printer(args->quiet));
+    auto result = pipeline::register_prepared(req, target, progress_printer(args->quiet));
+    result.time_s += target.timings.back().seconds;  // as register_scan: the index build included
     if (!result.usable()) {
       std::cerr << "breastfit: error: " << args->scan << ": " << result.fit.summary.message << "\n";
       // Keep the evidence, but no fitted outputs (not even the previous run's) that could be

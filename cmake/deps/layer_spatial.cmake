@@ -7,9 +7,3 @@ endif()
 if(NOT "${_scope}" STREQUAL "INTERFACE")
   target_link_libraries(${_target} PRIVATE nanoflann::nanoflann)
 endif()
-# The index builds run their per-face and per-leaf loops on several threads with OpenMP
-# (spatial/detail/parallel_for.h; deterministic: fixed chunks). PRIVATE, like the fit layer's.
-if(NOT "${_scope}" STREQUAL "INTERFACE")
-  find_package(OpenMP REQUIRED COMPONENTS CXX)
-  target_link_libraries(${_target} PRIVATE OpenMP::OpenMP_CXX)
-endif()

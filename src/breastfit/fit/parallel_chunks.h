@@ -1,5 +1,6 @@
 #pragma once
-/// \file Deterministic parallel loops of the fit layer (OpenMP). A range [0, n) is cut into chunks
+/// \file Deterministic parallel loops of the fit layer (the process's worker pool,
+/// core/chunk_pool.h). A range [0, n) is cut into chunks
 /// of a fixed size that does not depend on the number of threads; the chunks run on up to
 /// `threads` threads and the callers combine the chunks' results in chunk order. So every sum is
 /// taken in the same order, and the results are the same bits whatever the thread count.
@@ -12,7 +13,7 @@ namespace breastfit::fit {
 /// The threads to use for `requested`: itself when > 0. Otherwise (0: "all cores") OMP_NUM_THREADS
 /// when set, else the cores not already busy: the processors minus the whole part of the 1-minute
 /// load average, at least 1 (on a machine whose cores are all taken by other work, threads that
-/// wait for each other at every loop's end are slower than one). 1 when built without OpenMP.
+/// wait for each other at every loop's end are slower than one).
 int resolve_threads(int requested);
 
 /// Number of chunks of size `chunk_size` (> 0) covering [0, n).

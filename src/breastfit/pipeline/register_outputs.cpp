@@ -1,12 +1,13 @@
 #include "breastfit/pipeline/register_outputs.h"
 
 #include <fstream>
-#include <future>
-#include <system_error>
+#include <functional>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "breastfit/core/errors.h"
+#include "breastfit/core/task_queue.h"
 #include "breastfit/io/io.h"
 #include "breastfit/io/markups.h"
 #include "breastfit/io/output_set.h"
@@ -57,53 +58,48 @@ void write_register_outputs(const fs::path& dir, const RegisterResult& r, const 
   check_output_dir(dir, force, protected_paths);
   io::OutputSet set(dir, register_output_names(), "report.json");
 
-  // report.html (rendering its figures is most of the cost) is made on its own thread while this
-  // one writes the other files; the bytes are the same either way. Should a write below throw,
-  // the future's destructor waits for the report before the staging directory goes.
-  std::future<void> report;
-  bool report_inline = false;
-  if (options.report_html) {
-    const fs::path html = set.path("report.html");
-    try {
-      report = std::async(std::launch::async,
-                          [&r, &model, &options, html] { write_report_html(html, r, model.name, options.figures); });
-    } catch (const std::system_error&) {  // no thread to be had: written here, after the others
-      report_inline = true;
-    }
-  }
-
+  // The files are written by up to three threads, each taking the next group in order:
+  // report.html (rendering its figures is most of its cost), the painted scan with the drawings'
+  // meshes, and the fitted model with the JSON files. The bytes are the same either way; the
+  // first group's error in this order is rethrown once all have run.
   const double from_mm = 1.0 / r.scan.to_mm;
-  TriangleMesh fitted = r.fitted_mm;
-  fitted.V *= from_mm;
-  io::write_mesh(set.path("fitted.ply"), fitted);
+  std::vector<std::function<void()>> groups;
+  if (options.report_html)
+    groups.emplace_back([&] { write_report_html(set.path("report.html"), r, model.name, options.figures); });
+  groups.emplace_back([&] {
+    transfer::write_scan_painted(set.path("scan_painted.ply"), r.scan.mesh_mm, r.drawings_on_scan, from_mm);
+    transfer::write_drawings_ply(set.path("drawings.ply"), r.drawings_on_scan, from_mm);
+    transfer::write_drawings_obj(set.path("drawings.obj"), r.drawings_on_scan, from_mm);
+  });
+  groups.emplace_back([&] {
+    TriangleMesh fitted = r.fitted_mm;
+    fitted.V *= from_mm;
+    io::write_mesh(set.path("fitted.ply"), fitted);
 
-  io::MarkupsWriteOptions mo;
-  mo.units = r.scan.units == mesh::Units::Metres ? "m" : "mm";
-  io::MarkupsWriteOptions landmark_options = mo;  // not to be confused with the input landmarks
-  landmark_options.points_name = kFittedLandmarksName;
-  landmark_options.points_color = kFittedLandmarksColor;
-  io::write_markups(set.path("landmarks.mrk.json"), r.model_landmarks_mm, landmark_options);
-  io::write_markups(set.path("drawings.mrk.json"), r.drawings_mm, mo);
-  transfer::write_drawings_ply(set.path("drawings.ply"), r.drawings_on_scan, from_mm);
-  transfer::write_drawings_obj(set.path("drawings.obj"), r.drawings_on_scan, from_mm);
-  transfer::write_scan_painted(set.path("scan_painted.ply"), r.scan.mesh_mm, r.drawings_on_scan, from_mm);
+    io::MarkupsWriteOptions mo;
+    mo.units = r.scan.units == mesh::Units::Metres ? "m" : "mm";
+    io::MarkupsWriteOptions landmark_options = mo;  // not to be confused with the input landmarks
+    landmark_options.points_name = kFittedLandmarksName;
+    landmark_options.points_color = kFittedLandmarksColor;
+    io::write_markups(set.path("landmarks.mrk.json"), r.model_landmarks_mm, landmark_options);
+    io::write_markups(set.path("drawings.mrk.json"), r.drawings_mm, mo);
 
-  nlohmann::json params = model::params_to_json(model, r.fit.params);
-  params["template"] = {{"name", model.name}};
-  if (const InputFile* t = r.provenance ? r.provenance->input("template") : nullptr) {
-    params["template"]["path"] = t->path;
-    params["template"]["sha256"] = t->sha256;
-  }
-  params["units_note"] = "translations in mm in the scan frame (converted from the file's units)";
-  if (r.fit.detail_offsets.size() > 0)
-    params["surface_detail"] = {
-        {"note", "fitted.ply = the posed template + offsets_mm[i] * unit vertex normal i of the posed template"},
-        {"offsets_mm", std::vector<double>(r.fit.detail_offsets.data(),
-                                           r.fit.detail_offsets.data() + r.fit.detail_offsets.size())}};
-  write_json(set.path("params.json"), params);
-  write_json(set.path("report.json"), report_json(r));
-  if (report_inline) write_report_html(set.path("report.html"), r, model.name, options.figures);
-  if (report.valid()) report.get();  // rethrows the report's error
+    nlohmann::json params = model::params_to_json(model, r.fit.params);
+    params["template"] = {{"name", model.name}};
+    if (const InputFile* t = r.provenance ? r.provenance->input("template") : nullptr) {
+      params["template"]["path"] = t->path;
+      params["template"]["sha256"] = t->sha256;
+    }
+    params["units_note"] = "translations in mm in the scan frame (converted from the file's units)";
+    if (r.fit.detail_offsets.size() > 0)
+      params["surface_detail"] = {
+          {"note", "fitted.ply = the posed template + offsets_mm[i] * unit vertex normal i of the posed template"},
+          {"offsets_mm", std::vector<double>(r.fit.detail_offsets.data(),
+                                             r.fit.detail_offsets.data() + r.fit.detail_offsets.size())}};
+    write_json(set.path("params.json"), params);
+    write_json(set.path("report.json"), report_json(r));
+  });
+  run_in_order(groups.size(), static_cast<unsigned>(groups.size()), [&](std::size_t g) { groups[g](); });
   set.commit();  // without report.html, the previous run's report.html goes
 }
 

@@ -2,18 +2,15 @@
 
 #include <algorithm>
 
+#include "breastfit/core/chunk_pool.h"
+
 namespace breastfit::spatial::detail {
 
 void parallel_for_chunks(std::size_t n, std::size_t chunk_size, int threads,
                          const std::function<void(std::size_t, std::size_t, std::size_t)>& fn) {
   const std::size_t chunks = chunk_count(n, chunk_size);
   const auto t = static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(std::max(threads, 1)), chunks));
-  if (t <= 1) {
-    for (std::size_t c = 0; c < chunks; ++c) fn(c, c * chunk_size, std::min(n, (c + 1) * chunk_size));
-    return;
-  }
-#pragma omp parallel for num_threads(t) schedule(dynamic, 1)
-  for (std::size_t c = 0; c < chunks; ++c) fn(c, c * chunk_size, std::min(n, (c + 1) * chunk_size));
+  run_chunks(chunks, t, [&](std::size_t c) { fn(c, c * chunk_size, std::min(n, (c + 1) * chunk_size)); });
 }
 
 }  // namespace breastfit::spatial::detail

@@ -1,6 +1,6 @@
 #pragma once
-/// \file Deterministic parallel loop of the spatial layer's index builds (OpenMP; private to the
-/// layer). [0, n) is cut into chunks of a fixed size; each chunk runs once, on up to `threads`
+/// \file Deterministic parallel loop of the spatial layer's index builds (the process's worker
+/// pool, core/chunk_pool.h; private to the layer). [0, n) is cut into chunks of a fixed size; each chunk runs once, on up to `threads`
 /// threads in any order, and writes only its own slots, so a build gives the same bits whatever
 /// the thread count.
 #include <cstddef>
@@ -9,7 +9,7 @@
 namespace breastfit::spatial::detail {
 
 /// Calls fn(chunk, begin, end) for every chunk [chunk·chunk_size, min(n, (chunk+1)·chunk_size))
-/// of [0, n) on up to `threads` threads (serially for threads <= 1, or when built without OpenMP).
+/// of [0, n) on up to `threads` threads (serially for threads <= 1).
 /// fn must not throw.
 void parallel_for_chunks(std::size_t n, std::size_t chunk_size, int threads,
                          const std::function<void(std::size_t chunk, std::size_t begin,
