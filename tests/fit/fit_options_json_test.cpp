@@ -28,6 +28,7 @@ TEST(FitOptionsJson, SurvivesARoundTrip) {
   changed.detail.enabled = false;
   changed.detail.smoothness = 3.5;
   changed.refine.max_iterations = 7;
+  changed.shape.correspondence_interval = 3;
   changed.solver.function_tolerance = 3e-3;
   changed.solver.max_step_attempts = 5;
   FitOptions read;
@@ -37,6 +38,7 @@ TEST(FitOptionsJson, SurvivesARoundTrip) {
   EXPECT_DOUBLE_EQ(read.detail.smoothness, 3.5);
   EXPECT_DOUBLE_EQ(read.weights.lambda("sliding_landmarks"), 12.0);
   EXPECT_EQ(read.solver.max_step_attempts, 5);
+  EXPECT_EQ(read.shape.correspondence_interval, 3);
 }
 
 TEST(FitOptionsJson, HasOneLambdaKeyPerEnergyTerm) {

@@ -57,6 +57,7 @@ TEST(FitOptions, RejectsBadValuesNamingTheField) {
   invalid([](FitOptions& b) { b.correspondences.max_distance_end_mm = 100; }, "correspondences.max_distance_end_mm");
   invalid([](FitOptions& b) { b.correspondences.schedule_ramp = 0; }, "correspondences.schedule_ramp");
   invalid([](FitOptions& b) { b.shape.max_iterations = -2; }, "shape.max_iterations");
+  invalid([](FitOptions& b) { b.pose.correspondence_interval = -1; }, "pose.correspondence_interval");
   invalid([](FitOptions& b) { b.solver.function_tolerance = 0; }, "solver.function_tolerance");
   invalid([](FitOptions& b) { b.solver.min_damping = 1.0; }, "solver.min_damping");
   invalid([](FitOptions& b) { b.solver.max_step_attempts = 0; }, "solver.max_step_attempts");

@@ -173,6 +173,35 @@ TEST(Registration, SameBitsWhateverTheNumberOfThreads) {
   }
 }
 
+// The automatic correspondence interval (0): the rigid, pose and shape stages re-find their pairs
+// every 2nd iteration in a fit given all the template's landmarks (the odd iterations keep the
+// threshold of the even ones), every iteration with fewer or none.
+TEST(Registration, AutomaticCorrespondenceIntervalDependsOnTheLandmarks) {
+  const test::ToyScanCase c(31, 0.6);
+  ScanTarget scan(c.mesh, 600);
+  FitOptions o;
+  ASSERT_EQ(o.pose.correspondence_interval, 0);
+  const auto same_threshold_as_before = [](const FitSummary& s, const std::string& stage, int it) {
+    const IterationRecord* prev = nullptr;
+    for (const auto& r : s.iterations) {
+      if (r.stage != stage) continue;
+      if (r.iteration == it) return prev && prev->max_distance_mm == r.max_distance_mm;
+      prev = &r;
+    }
+    ADD_FAILURE() << "no iteration " << it << " of " << stage;
+    return false;
+  };
+  const std::vector<LandmarkTarget> all = match_landmarks(c.m, c.named_landmarks());
+  ASSERT_GE(all.size(), 3u);
+  const FitResult with = register_template(c.m, scan, all, o);
+  EXPECT_TRUE(same_threshold_as_before(with.summary, "pose", 1));
+  EXPECT_FALSE(same_threshold_as_before(with.summary, "pose", 2));
+  const FitResult fewer = register_template(c.m, scan, {all.begin(), all.end() - 1}, o);
+  EXPECT_FALSE(same_threshold_as_before(fewer.summary, "pose", 1));
+  const FitResult without = register_template(c.m, scan, {}, o);
+  EXPECT_FALSE(same_threshold_as_before(without.summary, "pose", 1));
+}
+
 TEST(Registration, RejectsUnknownOrDuplicateLandmarks) {
   const auto m = test::make_toy_model();
   EXPECT_THROW(match_landmarks(m, {{"belly_button", Vec3::Zero()}}), InvalidInput);

@@ -50,6 +50,34 @@ TEST(StageMinimizer, AcceptedStepsNeverRaiseTheEnergyAtFixedCorrespondences) {
   }
 }
 
+TEST(StageMinimizer, ReFindsTheCorrespondencesEveryIntervalIterationsOnly) {
+  ToyCase c;
+  ScanTarget scan(c.mesh, 300);
+  FitOptions o;
+  model::PoseParams start = model::PoseParams::identity(c.m);
+  start.global.translation = Vec3(3, -2, 4);
+  StageOptions stage{"rigid", true, false, false, 8, 1};
+  const auto run = [&](int interval) {
+    stage.correspondence_interval = interval;
+    Problem problem(c.m, scan, o, {});  // no landmarks: nothing else is re-chosen per iteration
+    model::PoseParams p = start;
+    FitSummary s;
+    minimize_stages(problem, {stage}, p, s);
+    return s.iterations;
+  };
+  const auto every = run(1), second = run(2);
+  ASSERT_EQ(second.size(), 8u);
+  EXPECT_NE(every[1].max_distance_mm, every[0].max_distance_mm);  // the threshold ramps down
+  for (size_t it = 1; it < second.size(); it += 2) {
+    // The pairs of the iteration before: same threshold, same count, the energy picks up where
+    // the accepted step left it.
+    EXPECT_EQ(second[it].max_distance_mm, second[it - 1].max_distance_mm) << it;
+    EXPECT_EQ(second[it].kept, second[it - 1].kept) << it;
+    if (second[it - 1].accepted) EXPECT_EQ(second[it].energy_before, second[it - 1].energy_after) << it;
+  }
+  EXPECT_NE(second[2].max_distance_mm, second[0].max_distance_mm);
+}
+
 TEST(StageMinimizer, TheCallbackCanAbortAndTheResultIsThenNotUsable) {
   ToyCase c;
   ScanTarget scan(c.mesh, 300);

@@ -24,6 +24,8 @@ void validate_stage(const StageOptions& s) {
           "must be in [0, 1000]");
   require(s.vertex_stride >= 1 && s.vertex_stride <= 64, s.name + ".vertex_stride", s.vertex_stride,
           "must be in [1, 64]");
+  require(s.correspondence_interval >= 0 && s.correspondence_interval <= 100, s.name + ".correspondence_interval",
+          s.correspondence_interval, "must be in [0, 100] (0: automatic)");
 }
 
 void validate_weights(const EnergyWeights& w) {

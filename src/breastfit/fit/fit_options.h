@@ -69,6 +69,12 @@ struct StageOptions {
   /// Landmarks beyond their check tolerance are down-weighted (fit/landmark_check.h). Off in the
   /// first stages, where correct landmarks can still be far (arms not yet abducted).
   bool robust_landmarks = false;
+  /// Re-find the correspondences (both directions) every n-th iteration of the stage (1: every
+  /// iteration); in between the pairs found last are kept (their targets and normals: the
+  /// point-to-plane residuals are the scan's tangent planes there) and only the model moves.
+  /// 0: automatic, 2 when every landmark of the template is given, else 1 (with 3 landmarks or
+  /// none the fit needs every re-association: docs/PERFORMANCE.md "Session 9").
+  int correspondence_interval = 1;
 };
 
 /// The Levenberg–Marquardt loop (stage_minimizer.h, lm_strategy.h) and its convergence tests.
@@ -111,9 +117,9 @@ struct FitOptions {
   /// landmarks (e.g. arms abducted 90° on supine arm boards, 65° away from the template's pose),
   /// where closest points alone would latch onto the wrong surface. Skipped without landmarks.
   StageOptions landmark_pose{"landmark_pose", true, true, false, 8, 1, false};
-  StageOptions rigid{"rigid", true, false, false, 8, 4};
-  StageOptions pose{"pose", true, true, false, 10, 2, true, true};
-  StageOptions shape{"shape", true, true, true, 10, 2, true, true};
+  StageOptions rigid{"rigid", true, false, false, 8, 4, true, false, 0};
+  StageOptions pose{"pose", true, true, false, 10, 2, true, true, 0};
+  StageOptions shape{"shape", true, true, true, 10, 2, true, true, 0};
   StageOptions refine{"refine", true, true, true, 3, 1, true, true};
   SolverOptions solver;
   SurfaceDetailOptions detail;

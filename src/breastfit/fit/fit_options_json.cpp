@@ -39,7 +39,8 @@ const std::vector<Field<StageOptions>>& fields() {
   static const std::vector<Field<S>> f = {{"global", &S::global},       {"bones", &S::bones},
                                           {"blendshapes", &S::blendshapes}, {"max_iterations", &S::max_iterations},
                                           {"vertex_stride", &S::vertex_stride}, {"use_data", &S::use_data},
-                                          {"robust_landmarks", &S::robust_landmarks}};
+                                          {"robust_landmarks", &S::robust_landmarks},
+                                          {"correspondence_interval", &S::correspondence_interval}};
   return f;
 }
 

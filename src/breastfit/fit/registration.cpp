@@ -356,6 +356,11 @@ FitResult register_template(const model::RiggedModel& model, ScanTarget& scan, s
   std::vector<StageOptions> stages;
   if (landmarks.size() >= 3) stages.push_back(options.landmark_pose);
   for (const auto& s : {options.rigid, options.pose, options.shape, options.refine}) stages.push_back(s);
+  // Automatic correspondence intervals: every 2nd iteration when all the landmarks hold the model
+  // (measured: with 3 landmarks or none, every iteration is needed).
+  const bool all_landmarks = landmarks.size() >= 3 && landmarks.size() >= model.landmarks.size();
+  for (auto& s : stages)
+    if (s.correspondence_interval == 0) s.correspondence_interval = all_landmarks ? 2 : 1;
   // Anatomy held where no landmark was given: without landmarks the breasts can slide over the
   // scan (the surface barely changes, the nipples move) and the lower pole stays too high; once
   // posed, the breast tips, the folds and the jugular notch found on the scan hold the nipples, the

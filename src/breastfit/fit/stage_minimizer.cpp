@@ -52,9 +52,11 @@ class StageRun {
   std::optional<Termination> iterate(int it, model::PoseParams& params, IterationRecord& rec) {
     auto& ev = problem_.evaluator();
     const bool rebuild = rebuild_next_ || it % options_.hessian_interval == 0;
-    const double max_dist = schedule_.threshold(data_stage_, it, stage_.max_iterations);
+    const bool refind = it % std::max(1, stage_.correspondence_interval) == 0;  // 0 (automatic) left: every one
+    if (refind) max_dist_ = schedule_.threshold(data_stage_, it, stage_.max_iterations);
+    const double max_dist = max_dist_;
     ev.set_params(params);
-    relinearize(max_dist);
+    relinearize(max_dist, refind);
     eq_.set_gradient_only(!rebuild);
     eq_.clear();
     const double e0 = problem_.evaluate(&eq_).total();
@@ -77,10 +79,11 @@ class StageRun {
   }
 
  private:
-  void relinearize(double max_dist) {
-    if (stage_.use_data)
-      problem_.update_correspondences(max_dist, stage_.vertex_stride, use_reverse_);
-    else
+  // `refind`: the correspondences are searched again (else the stage's last pairs are kept).
+  void relinearize(double max_dist, bool refind) {
+    if (stage_.use_data) {
+      if (refind) problem_.update_correspondences(max_dist, stage_.vertex_stride, use_reverse_);
+    } else
       problem_.clear_correspondences();
     problem_.update_terms(stage_.robust_landmarks);
   }
@@ -125,6 +128,7 @@ class StageRun {
   Eigen::MatrixXd H_;
   bool use_reverse_;  // the reverse term is used in the stages that move blendshapes
   bool rebuild_next_ = true;
+  double max_dist_ = 0;  // the threshold the current pairs were found with
 };
 
 }  // namespace

@@ -1,6 +1,7 @@
 #pragma once
 /// \file The registration's minimiser (as Ceres' trust_region_minimizer): stage by stage (coarse to
-/// fine), each outer iteration recomputes the correspondences at the current pose (ICP), lets the
+/// fine), each outer iteration recomputes the correspondences at the current pose (ICP; every
+/// stage.correspondence_interval-th iteration, the pairs kept in between), lets the
 /// terms update, builds the normal equations (the Hessian JᵀWJ every solver.hessian_interval-th
 /// iteration, the gradient every time), asks the damping strategy (lm_strategy.h) for steps until
 /// one lowers the energy, and applies the convergence tests (solver options) once the stage's
