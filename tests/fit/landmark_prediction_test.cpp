@@ -11,7 +11,9 @@
 #include <random>
 #include <string>
 
+#include "breastfit/fit/problem.h"
 #include "breastfit/fit/registration.h"
+#include "breastfit/fit/stage_minimizer.h"
 #include "breastfit/synth/synth_case.h"
 #include "support/default_template.h"
 
@@ -158,6 +160,38 @@ TEST(LandmarkPrediction, LeavingALandmarkOutMovesTheModelBack) {
   const LandmarkCheck* ch = find(r.summary, lms[0].first);
   ASSERT_NE(ch, nullptr);
   EXPECT_GT(ch->predicted_distance_mm, ch->distance_mm + 3.0);
+}
+
+// Re-linearised leave-one-out steps follow the path back over the curved skin that one linear
+// step cuts short: a pectoral insertion walked 30 mm is predicted farther from the click, and the
+// problem is left as it was.
+TEST(LandmarkPrediction, RelinearizedStepsRecoverMoreOfAMove) {
+  const auto& model = *test::default_template();
+  const synth::SynthCase& c = synth_case(23, synth::PoseType::Standing);
+  ScanTarget scan(c.scan);
+  auto lms = given(c);
+  const size_t k = 6;
+  ASSERT_EQ(lms[k].first, "pectoral_insertion_R");
+  lms[k].second = moved_along_skin(scan, lms[k].second, 30.0, 2.0);
+  FitOptions off;
+  off.landmark_check_mm = 1e6;  // nothing held off: the fit follows the click
+  const auto targets = match_landmarks(model, lms);
+  const FitResult r = register_template(model, scan, targets, off);
+  Problem problem(model, scan, off, targets);
+  problem.evaluator().set_params(r.params);
+  const Relinearization at_end{off.correspondences.max_distance_end_mm, off.uses_reverse_term(), true};
+  problem.update_correspondences(at_end.max_distance_mm, 1, at_end.with_reverse);
+  problem.update_terms(at_end.robust_landmarks);
+  const double energy = problem.evaluate(nullptr).total();
+  const auto active = active_parameters(problem.evaluator().layout(), off.refine, off.max_blendshapes);
+  const Vec3 linear = predict_left_out_landmarks(problem, r.params, active)[k];
+  const Vec3 relinearized = predict_left_out_relinearized(problem, r.params, active, k, 4, at_end);
+  const Vec3& click = lms[k].second;
+  EXPECT_GT((relinearized - click).norm(), (linear - click).norm() + 2.0)
+      << "linear " << (linear - click).norm() << " mm, re-linearised " << (relinearized - click).norm() << " mm";
+  // One step is the linear prediction.
+  EXPECT_LT((predict_left_out_relinearized(problem, r.params, active, k, 1, at_end) - linear).norm(), 1e-6);
+  EXPECT_NEAR(problem.evaluate(nullptr).total(), energy, 1e-9 * std::max(1.0, energy));
 }
 
 }  // namespace
