@@ -152,10 +152,10 @@ def main():
             jobs.append((a.bin, case, name, 0.0, mrk, None, None, os.path.join(a.out, name, "as_given"), a.extra))
         for cp in mrk["markups"][0]["controlPoints"]:
             label = cp["label"]
-            if a.landmarks and label not in a.landmarks:
-                continue
             for dist in a.distances:
-                start = rng.uniform(0, 2 * math.pi)
+                start = rng.uniform(0, 2 * math.pi)  # drawn for every landmark: --landmarks repeats a full run's moves
+                if a.landmarks and label not in a.landmarks:
+                    continue
                 for k in range(a.directions):
                     moved = skin.walk(cp["position"], dist, start + 2 * math.pi * k / a.directions)
                     jobs.append((a.bin, case, name, dist, mrk, label, moved,

@@ -25,6 +25,10 @@ double placed_landmark_tolerance_mm(const std::string& name, double landmark_che
   return landmark_check_tolerance_mm(name, landmark_check_mm);
 }
 
+bool relinearized_prediction_is_sharp(const std::string& name) {
+  return placed_landmark_tolerance_mm(name, 15.0) <= 12.0;
+}
+
 std::vector<std::pair<size_t, size_t>> exchanged_labels(const std::vector<LandmarkTarget>& given,
                                                         const std::vector<Vec3>& predicted,
                                                         double landmark_check_mm) {

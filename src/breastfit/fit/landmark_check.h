@@ -37,6 +37,13 @@ inline constexpr size_t kMinLandmarksToPredict = 3;
 /// anatomy and the other landmarks put it.
 double placed_landmark_tolerance_mm(const std::string& name, double landmark_check_mm);
 
+/// Whether a re-linearised leave-one-out prediction (landmark_prediction.h) of the landmark is as
+/// sharp as its tolerance: the sternal notch, xiphoid, acromia and pectoral insertions. Without a
+/// lowest breast point, a nipple or a mid-axillary point the model's breast and side slide as far
+/// as in a landmark-free fit (a lowest breast point as given on a benchmark torso: 13–17 mm linear,
+/// 20–26 mm re-linearised).
+bool relinearized_prediction_is_sharp(const std::string& name);
+
 /// IRLS factor of a landmark at check distance `distance_mm`: 1 within the tolerance,
 /// (tolerance / distance)² beyond.
 double robust_landmark_factor(double distance_mm, double tolerance_mm);

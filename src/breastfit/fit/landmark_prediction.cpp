@@ -70,4 +70,31 @@ std::vector<Vec3> predict_left_out_landmarks(Problem& problem, const model::Pose
   return out;
 }
 
+Vec3 predict_left_out_relinearized(Problem& problem, const model::PoseParams& params, const std::vector<int>& active,
+                                   size_t i, int steps, const Relinearization& relinearization) {
+  auto& ev = problem.evaluator();
+  const std::vector<size_t> one{i};
+  const auto energy_without = [&] { return problem.evaluate(nullptr).total() - problem.evaluate_landmark(i, nullptr); };
+  const auto recompute = [&] {
+    problem.update_correspondences(relinearization.max_distance_mm, 1, relinearization.with_reverse);
+    problem.update_terms(relinearization.robust_landmarks);
+  };
+  model::PoseParams at = params;
+  ev.set_params(at);
+  for (int k = 0; k < steps; ++k) {
+    if (k > 0) recompute();
+    const double before = energy_without();
+    const model::PoseParams next =
+        newton_step(problem, at, active, assemble(problem, active, nullptr), assemble(problem, active, &one));
+    ev.set_params(next);
+    if (k > 0 && !(energy_without() < before)) break;  // went too far at these correspondences (the first is the linear one)
+    at = next;
+  }
+  ev.set_params(at);
+  const Vec3 out = model_landmark_position(ev.model(), problem.landmarks()[i].model_landmark, ev.vertices(), at);
+  ev.set_params(params);
+  recompute();
+  return out;
+}
+
 }  // namespace breastfit::fit

@@ -32,4 +32,21 @@ model::PoseParams leave_out_landmarks(Problem& problem, const model::PoseParams&
 std::vector<Vec3> predict_left_out_landmarks(Problem& problem, const model::PoseParams& params,
                                              const std::vector<int>& active);
 
+/// The correspondences a re-linearised leave-one-out recomputes after each step.
+struct Relinearization {
+  double max_distance_mm = 15.0;  ///< correspondence threshold (the fit's final one)
+  bool with_reverse = false;      ///< the reverse term is used
+  bool robust_landmarks = false;  ///< the landmark terms' robust factors (as in the final stage)
+};
+
+/// The prediction of landmark `i` (of problem.landmarks()) from `steps` Newton steps of the
+/// energy without it, each from the previous one with the correspondences recomputed: the path
+/// back over the curved skin that one linear step (predict_left_out_landmarks) cuts short — a
+/// landmark walked 20–40 mm along the skin is predicted farther from the click. The first step is
+/// the linear one; a later step that raises the energy without the landmark (at its own
+/// correspondences) ends the walk. The problem is left
+/// at `params` with its correspondences and terms recomputed there.
+Vec3 predict_left_out_relinearized(Problem& problem, const model::PoseParams& params, const std::vector<int>& active,
+                                   size_t i, int steps, const Relinearization& relinearization);
+
 }  // namespace breastfit::fit

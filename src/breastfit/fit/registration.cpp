@@ -23,11 +23,20 @@
 namespace breastfit::fit {
 namespace {
 
+// A given landmark against its own anatomical definition found on the scan.
+struct AnatomyCheck {
+  double distance_mm = 0, tolerance_mm = 0;
+  std::string what;
+};
+
 // The given landmarks against their predictions: where the anatomy and the other landmarks put
-// them (empty when not checked), and the factor each one's weight was multiplied by.
+// them (empty when not checked), against their own anatomy on the scan (per landmark, when
+// checked), and the factor each one's weight was multiplied by (< 1: flagged before the refit).
 struct PlacedCheck {
   std::vector<Vec3> predicted;
+  std::vector<std::optional<AnatomyCheck>> anatomy;
   std::vector<double> held_off;
+  std::vector<bool> flagged;  // beyond a tolerance before the refit
 };
 
 std::string fmt(double v, int digits = 1) {
@@ -87,15 +96,12 @@ std::optional<BodyAxes> fitted_body_axes(const model::RiggedModel& model, const 
 // Flags on the final surface V (detail included: what the user sees); the robust factor is the one
 // the fit's last stage used, on the parametric model V_model.
 std::vector<LandmarkCheck> check_landmarks(const model::RiggedModel& model, const Points& V, const Points& V_model,
-                                           const model::PoseParams& params, const ScanTarget& scan,
+                                           const model::PoseParams& params,
                                            const std::vector<LandmarkTarget>& landmarks, const FitOptions& options,
-                                           const std::vector<Vec3>& predicted, const std::vector<double>& held_off) {
+                                           const PlacedCheck& placed) {
   std::vector<LandmarkCheck> out;
-  const Points N = mesh::vertex_normals(V, model.rest.F);
-  // The breast's outward direction from the scan's own normals: the fitted model's turn with a
-  // wrongly placed nipple (its breast follows the click), the scan's do not. Computed once, for
-  // the first nipple given.
-  Points scan_N;
+  const std::vector<Vec3>& predicted = placed.predicted;
+  const std::vector<double>& held_off = placed.held_off;
   for (const auto& t : landmarks) {
     LandmarkCheck c;
     c.name = t.name;
@@ -110,31 +116,14 @@ std::vector<LandmarkCheck> check_landmarks(const model::RiggedModel& model, cons
       c.predicted_tolerance_mm = placed_landmark_tolerance_mm(t.name, options.landmark_check_mm);
       c.flagged = c.flagged || c.predicted_distance_mm > c.predicted_tolerance_mm;
     }
-    if (t.name == "nipple_R" || t.name == "nipple_L") {
-      // Around where the other landmarks put the nipple (the fitted one follows a wrong click).
-      const Vec3 nipple = out.size() < predicted.size() ? predicted[out.size()]
-                                                        : model_landmark_position(model, t.model_landmark, V, params);
-      if (scan_N.rows() == 0) scan_N = scan.normal_sign() * mesh::vertex_normals(scan.mesh());
-      if (const auto tip = breast_tip_on_scan(scan.mesh().V, scan.mesh().V, scan_N, nipple)) {
-        c.anatomy_distance_mm = (*tip - t.position).norm();
-        c.anatomy_tolerance_mm = options.nipple_tip_check_mm;
-        c.anatomy = "the breast's tip on the scan";
-        c.flagged = c.flagged || c.anatomy_distance_mm > c.anatomy_tolerance_mm;
-      }
+    if (out.size() < placed.anatomy.size() && placed.anatomy[out.size()]) {
+      const AnatomyCheck& a = *placed.anatomy[out.size()];
+      c.anatomy_distance_mm = a.distance_mm;
+      c.anatomy_tolerance_mm = a.tolerance_mm;
+      c.anatomy = a.what;
+      c.flagged = c.flagged || a.distance_mm > a.tolerance_mm;
     }
-    if (t.name == "sternal_notch") {
-      // On the midline of the other landmarks, at the scan's profile break (midline_notch_check.h).
-      const Vec3 near = out.size() < predicted.size() ? predicted[out.size()]
-                                                      : model_landmark_position(model, t.model_landmark, V, params);
-      if (const auto axes = fitted_body_axes(model, V, N, params))
-        if (const auto notch = check_notch_on_midline(scan.mesh().V, landmarks, near, axes->up, axes->front,
-                                                      t.position, options.notch_check_mm)) {
-          c.anatomy_distance_mm = notch->distance_mm;
-          c.anatomy_tolerance_mm = notch->tolerance_mm;
-          c.anatomy = "the jugular notch on the scan's midline";
-          c.flagged = c.flagged || notch->flagged();
-        }
-    }
+    if (out.size() < placed.flagged.size()) c.flagged = c.flagged || placed.flagged[out.size()];
     out.push_back(c);
   }
   return out;
@@ -277,6 +266,61 @@ std::vector<Vec3> predict_given(Problem& problem, const model::PoseParams& param
   return out;
 }
 
+// The linear prediction of a landmark walked along the skin falls short (landmark_prediction.h):
+// the landmarks it already moved most (at least half their tolerance; at most
+// kRelinearizedLandmarks) are predicted again with re-linearised steps — those whose leave-one-out
+// is sharp (relinearized_prediction_is_sharp: without a lowest breast point, a nipple or a
+// mid-axillary point, the re-linearised model drifts as far as the landmark-free fit does).
+constexpr int kRelinearizedLandmarks = 2;
+constexpr int kRelinearizationSteps = 4;
+void relinearize_suspects(Problem& problem, const model::PoseParams& params, const FitOptions& options,
+                          const std::vector<LandmarkTarget>& given, std::vector<Vec3>& predicted) {
+  std::vector<std::pair<double, size_t>> suspects;
+  for (size_t i = 0; i < given.size(); ++i) {
+    const double ratio = (predicted[i] - given[i].position).norm() /
+                         placed_landmark_tolerance_mm(given[i].name, options.landmark_check_mm);
+    if (ratio >= 0.5 && relinearized_prediction_is_sharp(given[i].name)) suspects.emplace_back(-ratio, i);
+  }
+  std::sort(suspects.begin(), suspects.end());
+  if (suspects.size() > kRelinearizedLandmarks) suspects.resize(kRelinearizedLandmarks);
+  const auto active = active_parameters(problem.evaluator().layout(), options.refine, options.max_blendshapes);
+  const Relinearization at_end{options.correspondences.max_distance_end_mm, options.uses_reverse_term(),
+                               options.refine.robust_landmarks};
+  for (const auto& [ratio, i] : suspects)
+    predicted[i] = predict_left_out_relinearized(problem, params, active, i, kRelinearizationSteps, at_end);
+}
+
+// Each given nipple and sternal notch against its own definition on the scan, searched around
+// where the other landmarks put it (`predicted`; the fitted one without predictions, since the
+// fit follows a wrong click): the nipples at the breast's tip (landmark_check.h; along the scan's
+// own normals: the fitted model's turn with a wrongly placed nipple), the notch at the jugular
+// notch on the other landmarks' midline (midline_notch_check.h).
+std::vector<std::optional<AnatomyCheck>> check_anatomy(const model::RiggedModel& model, Problem& problem,
+                                                       const model::PoseParams& params, const ScanTarget& scan,
+                                                       const std::vector<LandmarkTarget>& given,
+                                                       const std::vector<Vec3>& predicted, const FitOptions& options) {
+  std::vector<std::optional<AnatomyCheck>> out(given.size());
+  auto& ev = problem.evaluator();
+  ev.set_params(params);
+  const Points& V = ev.vertices();
+  const auto axes = fitted_body_axes(model, V, mesh::vertex_normals(V, model.rest.F), params);
+  Points scan_N;  // computed once, for the first nipple given
+  for (size_t i = 0; i < given.size(); ++i) {
+    const LandmarkTarget& t = given[i];
+    const Vec3 near = i < predicted.size() ? predicted[i] : model_landmark_position(model, t.model_landmark, V, params);
+    if (t.name == "nipple_R" || t.name == "nipple_L") {
+      if (scan_N.rows() == 0) scan_N = scan.normal_sign() * mesh::vertex_normals(scan.mesh());
+      if (const auto tip = breast_tip_on_scan(scan.mesh().V, scan.mesh().V, scan_N, near))
+        out[i] = AnatomyCheck{(*tip - t.position).norm(), options.nipple_tip_check_mm, "the breast's tip on the scan"};
+    } else if (t.name == "sternal_notch" && axes) {
+      if (const auto notch = check_notch_on_midline(scan.mesh().V, given, near, axes->up, axes->front, t.position,
+                                                    options.notch_check_mm))
+        out[i] = AnatomyCheck{notch->distance_mm, notch->tolerance_mm, "the jugular notch on the scan's midline"};
+    }
+  }
+  return out;
+}
+
 // Checks the given landmarks against their predictions; those beyond their tolerance get their
 // weight multiplied by (tolerance / distance)² and, with `refit`, the model is stepped to where the
 // others put it (leave_out_landmarks) and the refine stage is run again: one bad click cannot drag
@@ -287,20 +331,28 @@ PlacedCheck hold_off_misplaced(const model::RiggedModel& model, ScanTarget& scan
                                bool refit = true) {
   PlacedCheck out;
   out.held_off.assign(given.size(), 1.0);
-  if (given.size() < kMinLandmarksToPredict || summary.termination == Termination::Aborted ||
-      summary.termination == Termination::NumericalFailure)
-    return out;
-  out.predicted = predict_given(*problem, params, options, given.size());
+  out.flagged.assign(given.size(), false);
+  if (summary.termination == Termination::Aborted || summary.termination == Termination::NumericalFailure) return out;
+  if (given.size() >= kMinLandmarksToPredict) {
+    out.predicted = predict_given(*problem, params, options, given.size());
+    relinearize_suspects(*problem, params, options, given, out.predicted);
+  }
+  out.anatomy = check_anatomy(model, *problem, params, scan, given, out.predicted, options);
   std::vector<size_t> off;
   for (size_t i = 0; i < given.size(); ++i) {
-    const double d = (out.predicted[i] - given[i].position).norm();
-    const double tolerance = placed_landmark_tolerance_mm(given[i].name, options.landmark_check_mm);
-    if (d <= tolerance) continue;
+    double factor = 1.0;
+    if (i < out.predicted.size())
+      factor = robust_landmark_factor((out.predicted[i] - given[i].position).norm(),
+                                      placed_landmark_tolerance_mm(given[i].name, options.landmark_check_mm));
+    if (out.anatomy[i]) factor = std::min(factor, robust_landmark_factor(out.anatomy[i]->distance_mm,
+                                                                         out.anatomy[i]->tolerance_mm));
+    if (factor >= 1.0) continue;
     off.push_back(i);
-    out.held_off[i] = robust_landmark_factor(d, tolerance);
+    out.flagged[i] = true;
+    out.held_off[i] = factor;
   }
   if (!refit) out.held_off.assign(given.size(), 1.0);
-  if (off.empty() || !refit) return out;
+  if (off.empty() || !refit || out.predicted.empty()) return out;
   params = leave_out_landmarks(*problem, params,
                                active_parameters(problem->evaluator().layout(), options.refine, options.max_blendshapes),
                                off);
@@ -308,8 +360,12 @@ PlacedCheck hold_off_misplaced(const model::RiggedModel& model, ScanTarget& scan
   for (size_t i : off) held[i].weight *= out.held_off[i];
   problem = std::make_unique<Problem>(model, scan, options, held);
   summary.termination = minimize_stages(*problem, {options.refine}, params, summary, on_iteration);
-  if (summary.termination != Termination::Aborted && summary.termination != Termination::NumericalFailure)
-    out.predicted = predict_given(*problem, params, options, given.size());
+  if (summary.termination != Termination::Aborted && summary.termination != Termination::NumericalFailure) {
+    // The landmarks held off keep the prediction that flagged them (the refit no longer follows them).
+    std::vector<Vec3> after = predict_given(*problem, params, options, given.size());
+    for (size_t i : off) after[i] = out.predicted[i];
+    out.predicted = std::move(after);
+  }
   return out;
 }
 
@@ -465,8 +521,7 @@ void finish_fit(const model::RiggedModel& model, ScanTarget& scan, Problem& prob
   }
   // Checked on the final surface (detail included): what the user sees.
   summary.landmark_checks =
-      check_landmarks(model, result.vertices, result.model_vertices, params, scan, landmarks, options,
-                      placed.predicted, placed.held_off);
+      check_landmarks(model, result.vertices, result.model_vertices, params, landmarks, options, placed);
   for (const auto& c : summary.landmark_checks) {
     if (!c.flagged) continue;
     std::string why;
