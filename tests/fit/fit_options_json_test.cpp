@@ -30,6 +30,9 @@ TEST(FitOptionsJson, SurvivesARoundTrip) {
   changed.refine.max_iterations = 7;
   changed.solver.function_tolerance = 3e-3;
   changed.solver.max_step_attempts = 5;
+  changed.refit.final_threshold = false;
+  changed.refit.max_iterations = 4;
+  changed.refit.vertex_tolerance_mm = 0.25;
   FitOptions read;
   update_from_json(read, to_json(changed));
   EXPECT_EQ(to_json(read), to_json(changed));
@@ -37,6 +40,9 @@ TEST(FitOptionsJson, SurvivesARoundTrip) {
   EXPECT_DOUBLE_EQ(read.detail.smoothness, 3.5);
   EXPECT_DOUBLE_EQ(read.weights.lambda("sliding_landmarks"), 12.0);
   EXPECT_EQ(read.solver.max_step_attempts, 5);
+  EXPECT_FALSE(read.refit.final_threshold);
+  EXPECT_EQ(read.refit.max_iterations, 4);
+  EXPECT_DOUBLE_EQ(read.refit.vertex_tolerance_mm, 0.25);
 }
 
 TEST(FitOptionsJson, HasOneLambdaKeyPerEnergyTerm) {
