@@ -2,9 +2,12 @@
 
 #include <cmath>
 #include <cstdio>
+#include <exception>
+#include <thread>
 
 #include "breastfit/core/errors.h"
 #include "breastfit/core/timer.h"
+#include "breastfit/fit/parallel_chunks.h"
 #include "breastfit/fit/scan_target.h"
 #include "breastfit/model/template_library.h"
 #include "breastfit/pipeline/landmark_frame_check.h"
@@ -104,6 +107,28 @@ RegisterResult register_prepared(const RegisterRequest& req, PreparedTarget& tar
   out.fitted_mm.V = out.fit.vertices;
   out.fitted_mm.F = model.rest.F;
   out.model_landmarks_mm = evaluate_landmarks(model, out.fit.vertices, out.fit.params);
+  // The breast volumes need the fitted surface only: with a second thread they are measured
+  // while the drawings are transferred and the distances computed (the same result either way).
+  double breasts_s = 0;
+  std::exception_ptr breasts_error;
+  const auto measure = [&]() noexcept {
+    Timer t;
+    try {
+      out.breasts = transfer::measure_breasts(model, out.fit.vertices);
+    } catch (...) {
+      breasts_error = std::current_exception();
+    }
+    breasts_s = t.seconds();
+  };
+  const bool beside = fit::resolve_threads(options.threads) > 1;
+  std::thread breasts_thread;
+  struct Joined {  // also when the transfer throws
+    std::thread& t;
+    ~Joined() {
+      if (t.joinable()) t.join();
+    }
+  } joined{breasts_thread};
+  if (beside) breasts_thread = std::thread(measure);
   transfer::TransferOptions transfer_options;
   transfer_options.reject_scan_border = !out.scan.was_point_cloud;
   out.drawings_on_scan = transfer::transfer_drawings(model, out.fit.vertices, scan, transfer_options);
@@ -113,24 +138,28 @@ RegisterResult register_prepared(const RegisterRequest& req, PreparedTarget& tar
       out.warnings.push_back("drawing '" + c.name + "': only " + fmt(100 * c.supported_fraction) + " % of it is on the scan");
   out.timings.push_back({"transfer", phase.seconds()});
   phase.reset();
-  out.breasts = transfer::measure_breasts(model, out.fit.vertices);
+  if (!beside) measure();
   metrics::CoverageOptions coverage_options;  // the surface error counts what the scan covers
   coverage_options.skip_border = !out.scan.was_point_cloud;
   TriangleMesh model_only;
   model_only.V = out.fit.model_vertices;
   model_only.F = model.rest.F;
-  out.coverage = metrics::surface_coverage(out.fitted_mm, scan, coverage_options);
+  std::vector<Index> faces;  // each vertex's closest scan face: the model-only pass's warm starts
+  out.coverage = metrics::surface_coverage(out.fitted_mm, scan, coverage_options, &faces);
   out.surface = out.coverage.stats();
   out.surface_model_only =
       out.fit.detail_offsets.size() > 0
-          ? metrics::surface_coverage(model_only, scan, coverage_options).stats()
+          ? metrics::surface_coverage(model_only, scan, coverage_options, &faces).stats()
           : out.surface;
   out.landmarks = metrics::landmark_errors(model, out.fit.vertices, out.fit.params, out.fit.landmarks);
   if (out.usable()) {
     out.plausibility = metrics::judge_plausibility(model, out.fit.params, out.coverage.fraction(), out.surface);
     for (const auto& p : out.plausibility.problems) out.warnings.push_back("implausible fit: " + p);
   }
+  if (breasts_thread.joinable()) breasts_thread.join();
+  if (breasts_error) std::rethrow_exception(breasts_error);
   out.timings.push_back({"measurements", phase.seconds()});
+  out.timings.push_back({"measurements:breast_volumes", breasts_s});  // in the above, or beside the transfer
   return out;
 }
 
