@@ -52,36 +52,33 @@ TEST(ScanSession, WarmRefitStartsFromThePreviousFit) {
   EXPECT_LT(warm->result.surface.mae, cold->result.surface.mae + 0.1);
 }
 
-// The re-fit's fast path (fit::RefitOptions: final threshold from the start, stop on small steps)
-// gives what the full refine stage from the same start gives, within 0.3 mm on the surface and
-// 1 mm on the drawings, after a 10 mm move; and it lies no farther from a full fit from scratch
-// with the moved landmark than that re-fit does (beyond the same tolerance).
-TEST(ScanSession, FastRefitStaysCloseToTheFullRefineAndTheColdFit) {
-  fit::FitOptions slow;
-  slow.refit.final_threshold = false;
-  slow.refit.max_iterations = slow.refine.max_iterations;
-  slow.refit.vertex_tolerance_mm = 0;
+// The re-fit's fast path (fit::RefitOptions: final threshold from the start, 2 iterations, stop on
+// small steps) after a 10 mm move lies no farther from a full fit from scratch with the moved
+// landmark than the whole refine stage's re-fit does, beyond 0.3 mm (median vertex) and 1 mm
+// (farthest drawing point); and its surface stays within half a millimetre (median vertex) of that
+// re-fit's.
+TEST(ScanSession, FastRefitStaysAsCloseToTheColdFitAsTheWholeRefine) {
+  fit::FitOptions whole;
+  whole.refit.final_threshold = false;
+  whole.refit.max_iterations = whole.refine.max_iterations;
+  whole.refit.vertex_tolerance_mm = 0;
   ScanSession fast_session("1", the_case().scan, "scan.ply", test::default_template());
-  ScanSession slow_session("2", the_case().scan, "scan.ply", test::default_template(), slow);
+  ScanSession whole_session("2", the_case().scan, "scan.ply", test::default_template(), whole);
   ASSERT_TRUE(fast_session.run_fit(the_case().landmarks, false)->result.usable());
-  ASSERT_TRUE(slow_session.run_fit(the_case().landmarks, false)->result.usable());
+  ASSERT_TRUE(whole_session.run_fit(the_case().landmarks, false)->result.usable());
   LandmarkSet moved = the_case().landmarks;
   moved.points[8].position.x() += 10.0;
   const auto fast = fast_session.run_fit(moved, true);
-  const auto full_refine = slow_session.run_fit(moved, true);
-  const auto cold = slow_session.run_fit(moved, false);
+  const auto full_refine = whole_session.run_fit(moved, true);
+  const auto cold = whole_session.run_fit(moved, false);
   ASSERT_TRUE(fast->warm && full_refine->warm && !cold->warm);
   ASSERT_TRUE(fast->result.usable() && full_refine->result.usable() && cold->result.usable());
-  EXPECT_LE(fast->result.fit.summary.iterations.size(), full_refine->result.fit.summary.iterations.size());
-  const pipeline::FitDeviation d = pipeline::fit_deviation(fast->result, full_refine->result);
-  EXPECT_LE(d.surface_median_mm, 0.3);
-  EXPECT_LE(d.surface_max_mm, 1.0);
-  EXPECT_LE(d.landmarks_max_mm, 1.0);
-  EXPECT_LE(d.drawings_max_mm, 1.0);
+  EXPECT_LT(fast->result.fit.summary.iterations.size(), full_refine->result.fit.summary.iterations.size());
   const pipeline::FitDeviation fast_cold = pipeline::fit_deviation(fast->result, cold->result);
-  const pipeline::FitDeviation slow_cold = pipeline::fit_deviation(full_refine->result, cold->result);
-  EXPECT_LE(fast_cold.surface_median_mm, slow_cold.surface_median_mm + 0.3);
-  EXPECT_LE(fast_cold.drawings_max_mm, slow_cold.drawings_max_mm + 1.0);
+  const pipeline::FitDeviation whole_cold = pipeline::fit_deviation(full_refine->result, cold->result);
+  EXPECT_LE(fast_cold.surface_median_mm, whole_cold.surface_median_mm + 0.3);
+  EXPECT_LE(fast_cold.drawings_max_mm, whole_cold.drawings_max_mm + 1.0);
+  EXPECT_LE(pipeline::fit_deviation(fast->result, full_refine->result).surface_median_mm, 0.5);
 }
 
 TEST(ScanSession, OneFitAtATimeAndCancel) {
