@@ -10,6 +10,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <map>
+#include <memory>
 #include <iostream>
 #include <time.h>
 #include <unistd.h>
@@ -22,6 +24,7 @@
 #include "breastfit/fit/parallel_chunks.h"
 #include "breastfit/io/io.h"
 #include "breastfit/io/landmarks_io.h"
+#include "breastfit/pipeline/fit_deviation.h"
 #include "breastfit/pipeline/register_outputs.h"
 #include "breastfit/pipeline/register_scan.h"
 #include "breastfit/pipeline/report_html.h"
@@ -47,19 +50,40 @@ double process_cpu_s() {
   return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
 }
 
+// The re-fits' deviations (pipeline::fit_deviation) from the same re-fits with the whole refine
+// stage (RefitOptions off: its full threshold schedule and cap, no vertex tolerance), and from
+// full fits from scratch with the same moved landmarks.
+struct RefitDeviations {
+  std::vector<pipeline::FitDeviation> full_refine, cold;
+};
+
 // The workstation's Re-fit: the scan opened once (serve::ScanSession), a full fit, then `repeat`
 // warm-started re-fits, each after moving one landmark (in turn) by `move_mm` along the scan's x,
 // y or z.
 // Returns the server time of each re-fit, ms (fit, transfer, measurements, distances): wall and
 // the thread's CPU time (the work is single-threaded: CPU time is the wall time without the
-// machine's other load).
+// machine's other load). With `deviations` (--compare-cold), each re-fit is also run with the whole refine stage (a
+// session of its own, re-fitted in the same order) and fitted from scratch; `phases_ms` collects
+// the re-fits' phase times (RegisterResult::timings) by name.
 std::vector<double> time_refits(const std::filesystem::path& dir, const std::shared_ptr<const model::RiggedModel>& model,
                                 const fit::FitOptions& options, int repeat, double move_mm, bool& usable,
-                                std::vector<double>& cpu_ms) {
-  serve::ScanSession session("bench", dir / "scan.ply", (dir / "scan.ply").string(), model, options);
+                                std::vector<double>& cpu_ms, std::map<std::string, std::vector<double>>& phases_ms,
+                                std::vector<double>& iterations, RefitDeviations* deviations) {
+  const std::string scan_name = (dir / "scan.ply").string();
+  serve::ScanSession session("bench", dir / "scan.ply", scan_name, model, options);
+  std::unique_ptr<serve::ScanSession> slow, cold;
+  if (deviations) {
+    fit::FitOptions whole = options;
+    whole.refit.final_threshold = false;
+    whole.refit.max_iterations = options.refine.max_iterations;
+    whole.refit.vertex_tolerance_mm = 0;
+    slow = std::make_unique<serve::ScanSession>("full refine", dir / "scan.ply", scan_name, model, whole);
+    cold = std::make_unique<serve::ScanSession>("cold", dir / "scan.ply", scan_name, model, options);
+  }
   LandmarkSet lms = io::landmarks_to_mm(io::read_landmarks(dir / "landmarks.mrk.json"), session.scan().units);
   lms.declared_units = "mm";
   usable = session.run_fit(lms, false)->result.usable();
+  if (slow) slow->run_fit(lms, false);
   std::vector<double> ms;
   for (int k = 0; k < repeat && usable; ++k) {
     LandmarkSet moved = lms;
@@ -69,6 +93,15 @@ std::vector<double> time_refits(const std::filesystem::path& dir, const std::sha
     usable = usable && outcome->result.usable();
     ms.push_back(outcome->server_ms);
     cpu_ms.push_back(outcome->server_cpu_ms);
+    iterations.push_back(static_cast<double>(outcome->result.fit.summary.iterations.size()));
+    for (const auto& p : outcome->result.timings)
+      if (p.phase != "scan_preparation" && p.phase != "index_build") phases_ms[p.phase].push_back(1000 * p.seconds);
+    if (deviations && outcome->result.usable()) {
+      const auto whole = slow->run_fit(moved, true);
+      if (whole->result.usable()) deviations->full_refine.push_back(pipeline::fit_deviation(outcome->result, whole->result));
+      const auto full = cold->run_fit(moved, false);
+      if (full->result.usable()) deviations->cold.push_back(pipeline::fit_deviation(outcome->result, full->result));
+    }
   }
   return ms;
 }
@@ -93,6 +126,20 @@ std::vector<double> time_suggests(const std::filesystem::path& dir, const std::s
   return ms;
 }
 
+// Deviations of the re-fits from `what`: median and largest over the re-fits of each measure.
+void print_deviations(const std::string& what, const std::vector<pipeline::FitDeviation>& d) {
+  auto row = [&](const char* what, double pipeline::FitDeviation::*field) {
+    std::vector<double> v;
+    for (const auto& x : d) v.push_back(x.*field);
+    std::printf("  %-28s median %.3f mm, max %.3f mm\n", what, median(v), v.empty() ? 0.0 : *std::max_element(v.begin(), v.end()));
+  };
+  std::printf("re-fit vs %s (%zu pairs, both usable):\n", what.c_str(), d.size());
+  row("surface, median vertex", &pipeline::FitDeviation::surface_median_mm);
+  row("surface, farthest vertex", &pipeline::FitDeviation::surface_max_mm);
+  row("landmarks, farthest", &pipeline::FitDeviation::landmarks_max_mm);
+  row("drawings, farthest point", &pipeline::FitDeviation::drawings_max_mm);
+}
+
 }  // namespace
 
 void register_bench(CLI::App& app, int& exit_code) {
@@ -100,7 +147,7 @@ void register_bench(CLI::App& app, int& exit_code) {
     std::string dir, template_path, template_mesh, config, json_out;
     int repeat = 5;
     double refit_mm = 10.0;
-    bool no_landmarks = false, refit = false, suggest = false;
+    bool no_landmarks = false, refit = false, suggest = false, compare_cold = false;
     FitFlags fit;
   };
   auto args = std::make_shared<Args>();
@@ -117,6 +164,9 @@ void register_bench(CLI::App& app, int& exit_code) {
                 "time the workstation's warm-started re-fit after moving one landmark (server time, ms)");
   sub->add_option("--refit-mm", args->refit_mm, "how far --refit moves the landmark, mm (default 10)")
       ->check(CLI::Range(0.0, 200.0));
+  sub->add_flag("--compare-cold", args->compare_cold,
+                "with --refit: also re-fit each moved landmark set with the whole refine stage and fit it from "
+                "scratch, and print how far the re-fits lie from those (surface, landmarks, drawings, mm)");
   sub->add_flag("--suggest", args->suggest,
                 "time the workstation's Suggest: the 12 landmarks found on the open scan (server time, ms)");
   sub->add_option("--template,-t", args->template_path, "rigged template (.glb/.gltf)");
@@ -133,7 +183,11 @@ void register_bench(CLI::App& app, int& exit_code) {
     std::vector<double> medians, total_medians, full_medians;
     if (args->refit || args->suggest) {
       const std::string job = args->suggest ? "suggest" : "refit";
+      if (args->compare_cold && !args->refit) throw InvalidInput("bench: --compare-cold needs --refit");
       std::vector<double> all, all_cpu, cpu_medians;
+      std::map<std::string, std::vector<double>> phases_ms;
+      std::vector<double> iterations;
+      RefitDeviations deviations;
       std::printf("%-24s %12s %12s %12s %8s\n", "case", (job + "_ms_med").c_str(), (job + "_ms_max").c_str(), "cpu_ms_med",
                   "status");
       for (const auto& dir : experiments::find_case_dirs(args->dir)) {
@@ -141,7 +195,8 @@ void register_bench(CLI::App& app, int& exit_code) {
         std::vector<double> cpu;
         const std::vector<double> ms =
             args->suggest ? time_suggests(dir, model, options, args->repeat, usable, cpu)
-                          : time_refits(dir, model, options, args->repeat, args->refit_mm, usable, cpu);
+                          : time_refits(dir, model, options, args->repeat, args->refit_mm, usable, cpu, phases_ms,
+                                        iterations, args->compare_cold ? &deviations : nullptr);
         all.insert(all.end(), ms.begin(), ms.end());
         all_cpu.insert(all_cpu.end(), cpu.begin(), cpu.end());
         medians.push_back(median(ms));
@@ -156,6 +211,15 @@ void register_bench(CLI::App& app, int& exit_code) {
       std::printf("%s, median of all %zu: %.1f ms wall, %.1f ms CPU (median of the case medians: %.1f ms wall, "
                   "%.1f ms CPU)\n",
                   what, all.size(), median(all), median(all_cpu), median(medians), median(cpu_medians));
+      if (!phases_ms.empty()) {
+        std::printf("re-fits: median %.1f iterations; phases (median ms, wall):", median(iterations));
+        for (const auto& [phase, v] : phases_ms) std::printf(" %s %.1f", phase.c_str(), median(v));
+        std::printf("\n");
+      }
+      if (args->compare_cold) {
+        print_deviations("the same re-fit with the whole refine stage", deviations.full_refine);
+        print_deviations("a full fit from scratch with the same landmarks", deviations.cold);
+      }
       if (!args->json_out.empty()) {
         std::ofstream f(args->json_out);
         if (!f) throw IoError(args->json_out, "cannot open for writing");

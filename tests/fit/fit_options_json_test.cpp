@@ -31,6 +31,9 @@ TEST(FitOptionsJson, SurvivesARoundTrip) {
   changed.shape.correspondence_interval = 3;
   changed.solver.function_tolerance = 3e-3;
   changed.solver.max_step_attempts = 5;
+  changed.refit.final_threshold = false;
+  changed.refit.max_iterations = 4;
+  changed.refit.vertex_tolerance_mm = 0.25;
   FitOptions read;
   update_from_json(read, to_json(changed));
   EXPECT_EQ(to_json(read), to_json(changed));
@@ -39,6 +42,9 @@ TEST(FitOptionsJson, SurvivesARoundTrip) {
   EXPECT_DOUBLE_EQ(read.weights.lambda("sliding_landmarks"), 12.0);
   EXPECT_EQ(read.solver.max_step_attempts, 5);
   EXPECT_EQ(read.shape.correspondence_interval, 3);
+  EXPECT_FALSE(read.refit.final_threshold);
+  EXPECT_EQ(read.refit.max_iterations, 4);
+  EXPECT_DOUBLE_EQ(read.refit.vertex_tolerance_mm, 0.25);
 }
 
 TEST(FitOptionsJson, HasOneLambdaKeyPerEnergyTerm) {

@@ -63,6 +63,9 @@ TEST(FitOptions, RejectsBadValuesNamingTheField) {
   invalid([](FitOptions& b) { b.solver.max_step_attempts = 0; }, "solver.max_step_attempts");
   invalid([](FitOptions& b) { b.solver.min_gain_ratio = 1.0; }, "solver.min_gain_ratio");
   invalid([](FitOptions& b) { b.solver.hessian_interval = 0; }, "solver.hessian_interval");
+  invalid([](FitOptions& b) { b.solver.vertex_tolerance_mm = -0.1; }, "solver.vertex_tolerance_mm");
+  invalid([](FitOptions& b) { b.refit.max_iterations = 0; }, "refit.max_iterations");
+  invalid([](FitOptions& b) { b.refit.vertex_tolerance_mm = NAN; }, "refit.vertex_tolerance_mm");
 }
 
 TEST(FitOptions, ADisableableTermMayBeSwitchedOff) {

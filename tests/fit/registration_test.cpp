@@ -104,8 +104,16 @@ TEST(Registration, WarmRefitStartsFromTheGivenParametersAndRunsOnlyRefine) {
   EXPECT_EQ(warm.summary.stages[0].name, "refine");
   EXPECT_LE(static_cast<int>(warm.summary.iterations.size()), o.refine.max_iterations);
   EXPECT_LT(warm.summary.kept_mae_mm, full.summary.kept_mae_mm + 0.02);
-  // From the truth it stays close to it (the priors pull a noiseless toy fit only a little).
-  EXPECT_LT(refit_template(m, scan, lms, o, truth).summary.kept_mae_mm, 0.5);
+  // From the truth it stays close to it (the priors pull a noiseless toy fit only a little): with
+  // the whole refine stage, and with the re-fit's own shorter schedule (RefitOptions: 0.50 mm
+  // here against 0.33 mm, its 2 iterations stop before the third brings the toy back).
+  FitOptions whole = o;
+  whole.refit.final_threshold = false;
+  whole.refit.max_iterations = o.refine.max_iterations;
+  whole.refit.vertex_tolerance_mm = 0;
+  const double whole_mae = refit_template(m, scan, lms, whole, truth).summary.kept_mae_mm;
+  EXPECT_LT(whole_mae, 0.5);
+  EXPECT_LT(refit_template(m, scan, lms, o, truth).summary.kept_mae_mm, 0.6);
   // Parameters of another template are refused.
   auto other = truth;
   other.bones.pop_back();

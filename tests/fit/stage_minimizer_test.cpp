@@ -32,6 +32,32 @@ TEST(StageMinimizer, AStageWithRoomToSpareEndsByConvergenceNotByItsCap) {
   EXPECT_EQ(s.timings[0].phase, "stage:rigid");
 }
 
+TEST(StageMinimizer, StopsOnceAStepMovesNoVertexFartherThanTheVertexTolerance) {
+  ToyCase c;
+  ScanTarget scan(c.mesh, 300);
+  StageOptions stage{"rigid", true, false, false, 200, 1};
+  auto run = [&](double tolerance_mm) {
+    FitOptions o;
+    o.solver.function_tolerance = 1e-300;  // only the vertex tolerance (or the cap) ends the stage
+    o.solver.gradient_tolerance = o.solver.parameter_tolerance = 0;
+    o.solver.vertex_tolerance_mm = tolerance_mm;
+    o.correspondences.max_distance_start_mm = o.correspondences.max_distance_end_mm;  // tests from iteration 1
+    Problem problem(c.m, scan, o, c.landmarks());
+    model::PoseParams p = model::PoseParams::identity(c.m);
+    p.global.translation = Vec3(3, -2, 4);
+    FitSummary s;
+    const Termination t = minimize_stages(problem, {stage}, p, s);
+    return std::make_pair(t, s.stages.at(0).iterations);
+  };
+  const auto [loose, loose_iterations] = run(0.5);
+  const auto [tight, tight_iterations] = run(1e-3);
+  EXPECT_EQ(loose, Termination::ParameterTolerance);
+  EXPECT_LT(loose_iterations, tight_iterations);
+  EXPECT_LT(tight_iterations, 200);
+  const auto [off, off_iterations] = run(0);  // off: the other tests decide (here: the cap or no decrease)
+  EXPECT_GE(off_iterations, tight_iterations);
+}
+
 TEST(StageMinimizer, AcceptedStepsNeverRaiseTheEnergyAtFixedCorrespondences) {
   ToyCase c;
   ScanTarget scan(c.mesh, 300);

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 
 #include "breastfit/mesh/normals.h"
@@ -119,6 +120,32 @@ TEST(SurfaceCoverage, AModelFarFromTheScanIsNotCovered) {
   const SurfaceCoverage c = surface_coverage(inflated, full);
   EXPECT_LT(c.fraction(), 0.05);  // a few vertices in concave folds come closer
   EXPECT_EQ(c.distance_mm.size(), static_cast<size_t>(k.fitted.V.rows()));
+  // The searches stop at max_distance_mm: a vertex farther than that has no distance (+∞).
+  int far = 0;
+  for (size_t i = 0; i < c.distance_mm.size(); ++i) {
+    if (c.distance_mm[i] <= c.options.max_distance_mm) continue;
+    EXPECT_TRUE(std::isinf(c.distance_mm[i])) << c.distance_mm[i];
+    EXPECT_FALSE(c.covered[i]);
+    ++far;
+  }
+  EXPECT_GT(far, k.fitted.V.rows() / 2);
+}
+
+TEST(SurfaceCoverage, WarmStartsFromAnotherPassChangeNothingButTheSpeed) {
+  const Case& k = the_case();
+  const fit::ScanTarget full(k.c.scan);
+  std::vector<Index> faces;
+  const SurfaceCoverage first = surface_coverage(k.fitted, full, {}, &faces);
+  ASSERT_EQ(faces.size(), static_cast<size_t>(k.fitted.V.rows()));
+  TriangleMesh moved = k.fitted;
+  moved.V += 2.0 * mesh::vertex_normals(k.fitted);  // as the model without its surface detail
+  const SurfaceCoverage cold = surface_coverage(moved, full);
+  const SurfaceCoverage warm = surface_coverage(moved, full, {}, &faces);
+  ASSERT_EQ(warm.distance_mm.size(), cold.distance_mm.size());
+  for (size_t i = 0; i < cold.distance_mm.size(); ++i)  // a tie between two faces may differ in the last bits
+    if (!std::isinf(cold.distance_mm[i])) EXPECT_NEAR(warm.distance_mm[i], cold.distance_mm[i], 1e-9) << i;
+  EXPECT_EQ(warm.covered, cold.covered);
+  EXPECT_NE(cold.distance_mm, first.distance_mm);
 }
 
 }  // namespace

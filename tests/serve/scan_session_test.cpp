@@ -4,6 +4,7 @@
 
 #include "breastfit/core/errors.h"
 #include "breastfit/io/io.h"
+#include "breastfit/pipeline/fit_deviation.h"
 #include "breastfit/synth/synth_case.h"
 #include "support/default_template.h"
 #include "support/test_paths.h"
@@ -49,6 +50,35 @@ TEST(ScanSession, WarmRefitStartsFromThePreviousFit) {
   EXPECT_LT(warm->result.fit.summary.iterations.size(), cold->result.fit.summary.iterations.size());
   // Close to the full fit: the mean surface error does not get worse by more than a tenth of a mm.
   EXPECT_LT(warm->result.surface.mae, cold->result.surface.mae + 0.1);
+}
+
+// The re-fit's fast path (fit::RefitOptions: final threshold from the start, 2 iterations, stop on
+// small steps) after a 10 mm move lies no farther from a full fit from scratch with the moved
+// landmark than the whole refine stage's re-fit does, beyond 0.3 mm (median vertex) and 1 mm
+// (farthest drawing point); and its surface stays within half a millimetre (median vertex) of that
+// re-fit's.
+TEST(ScanSession, FastRefitStaysAsCloseToTheColdFitAsTheWholeRefine) {
+  fit::FitOptions whole;
+  whole.refit.final_threshold = false;
+  whole.refit.max_iterations = whole.refine.max_iterations;
+  whole.refit.vertex_tolerance_mm = 0;
+  ScanSession fast_session("1", the_case().scan, "scan.ply", test::default_template());
+  ScanSession whole_session("2", the_case().scan, "scan.ply", test::default_template(), whole);
+  ASSERT_TRUE(fast_session.run_fit(the_case().landmarks, false)->result.usable());
+  ASSERT_TRUE(whole_session.run_fit(the_case().landmarks, false)->result.usable());
+  LandmarkSet moved = the_case().landmarks;
+  moved.points[8].position.x() += 10.0;
+  const auto fast = fast_session.run_fit(moved, true);
+  const auto full_refine = whole_session.run_fit(moved, true);
+  const auto cold = whole_session.run_fit(moved, false);
+  ASSERT_TRUE(fast->warm && full_refine->warm && !cold->warm);
+  ASSERT_TRUE(fast->result.usable() && full_refine->result.usable() && cold->result.usable());
+  EXPECT_LT(fast->result.fit.summary.iterations.size(), full_refine->result.fit.summary.iterations.size());
+  const pipeline::FitDeviation fast_cold = pipeline::fit_deviation(fast->result, cold->result);
+  const pipeline::FitDeviation whole_cold = pipeline::fit_deviation(full_refine->result, cold->result);
+  EXPECT_LE(fast_cold.surface_median_mm, whole_cold.surface_median_mm + 0.3);
+  EXPECT_LE(fast_cold.drawings_max_mm, whole_cold.drawings_max_mm + 1.0);
+  EXPECT_LE(pipeline::fit_deviation(fast->result, full_refine->result).surface_median_mm, 0.5);
 }
 
 TEST(ScanSession, OneFitAtATimeAndCancel) {

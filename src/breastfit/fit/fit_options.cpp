@@ -77,6 +77,15 @@ void validate_solver(const SolverOptions& s) {
   require(s.min_gain_ratio >= 0 && s.min_gain_ratio < 1, "solver.min_gain_ratio", s.min_gain_ratio, "must be in [0, 1)");
   require(s.hessian_interval >= 1 && s.hessian_interval <= 10, "solver.hessian_interval", s.hessian_interval,
           "must be in [1, 10]");
+  require(std::isfinite(s.vertex_tolerance_mm) && s.vertex_tolerance_mm >= 0, "solver.vertex_tolerance_mm",
+          s.vertex_tolerance_mm, "must be finite and >= 0");
+}
+
+void validate_refit(const RefitOptions& r) {
+  require(r.max_iterations >= 1 && r.max_iterations <= 1000, "refit.max_iterations", r.max_iterations,
+          "must be in [1, 1000]");
+  require(std::isfinite(r.vertex_tolerance_mm) && r.vertex_tolerance_mm >= 0, "refit.vertex_tolerance_mm",
+          r.vertex_tolerance_mm, "must be finite and >= 0");
 }
 
 void validate_detail(const SurfaceDetailOptions& d) {
@@ -132,6 +141,7 @@ void FitOptions::validate() const {
   for (const StageOptions* s : stages()) validate_stage(*s);
   validate_solver(solver);
   validate_detail(detail);
+  validate_refit(refit);
   require(landmark_warning_mm > 0, "landmark_warning_mm", landmark_warning_mm, "must be > 0");
   require(positive(landmark_check_mm), "landmark_check_mm", landmark_check_mm, "must be finite and > 0");
   require(positive(nipple_tip_check_mm), "nipple_tip_check_mm", nipple_tip_check_mm, "must be finite and > 0");

@@ -97,6 +97,24 @@ struct SolverOptions {
   double min_gain_ratio = 0.0;
   int hessian_interval = 2;        ///< rebuild JᵀWJ every n-th iteration of a stage (1 = always);
                                    ///< in between only the gradient is recomputed
+  /// Converged when an accepted step moves no model vertex farther than this, mm (0: off; the
+  /// warm re-fit's RefitOptions::vertex_tolerance_mm).
+  double vertex_tolerance_mm = 0.0;
+};
+
+/// The workstation's warm re-fit (fit::refit_template) after the user moved a landmark: the
+/// previous fit's parameters and correspondences are nearly right, so the refine stage runs at the
+/// final correspondence threshold from its first iteration and stops once its steps are small.
+struct RefitOptions {
+  /// The refine stage at correspondences.max_distance_end_mm from the first iteration (false:
+  /// the threshold decays from max_distance_start_mm as in a stage of its own).
+  bool final_threshold = true;
+  /// The refine stage's cap in a re-fit: 2 of its 3 (on the 14 bench cases after a 10 mm move the
+  /// re-fit lies as close to a full fit from scratch as with 3; docs/WORKSTATION.md "Speed").
+  int max_iterations = 2;
+  /// Stop once an accepted step moves no model vertex farther than this, mm (0: only the solver's
+  /// tests).
+  double vertex_tolerance_mm = 0.1;
 };
 
 /// The surface-detail layer after the parametric fit (fit/surface_detail.h; beyond the paper).
@@ -123,6 +141,7 @@ struct FitOptions {
   StageOptions refine{"refine", true, true, true, 3, 1, true, true};
   SolverOptions solver;
   SurfaceDetailOptions detail;
+  RefitOptions refit;
   int max_blendshapes = -1;          ///< use only the first n blendshapes (experiments); < 0 = all
   int max_landmarks = -1;            ///< use only the first n landmarks in the paper's order; < 0 = all
   bool use_landmarks = true;         ///< false: landmark-free fit (landmarks only reported)

@@ -54,7 +54,16 @@ const std::vector<Field<SolverOptions>>& fields() {
       {"damping_decrease", &S::damping_decrease}, {"damping_increase", &S::damping_increase},
       {"good_gain_ratio", &S::good_gain_ratio},
       {"max_step_attempts", &S::max_step_attempts}, {"min_gain_ratio", &S::min_gain_ratio},
-      {"hessian_interval", &S::hessian_interval}};
+      {"hessian_interval", &S::hessian_interval}, {"vertex_tolerance_mm", &S::vertex_tolerance_mm}};
+  return f;
+}
+
+template <>
+const std::vector<Field<RefitOptions>>& fields() {
+  using R = RefitOptions;
+  static const std::vector<Field<R>> f = {{"final_threshold", &R::final_threshold},
+                                          {"max_iterations", &R::max_iterations},
+                                          {"vertex_tolerance_mm", &R::vertex_tolerance_mm}};
   return f;
 }
 
@@ -161,7 +170,7 @@ json write_weights(const EnergyWeights& w) {
 
 void update_from_json(FitOptions& o, const json& j) {
   std::vector<std::string> keys = keys_of<FitOptions>();
-  for (const char* k : {"weights", "correspondences", "solver", "detail"}) keys.push_back(k);
+  for (const char* k : {"weights", "correspondences", "solver", "detail", "refit"}) keys.push_back(k);
   for (const StageOptions* s : o.stages()) keys.push_back(s->name);
   if (j.is_object())
     for (const char* moved : {"function_tolerance", "step_tolerance", "initial_damping", "hessian_interval"})
@@ -189,6 +198,10 @@ void update_from_json(FitOptions& o, const json& j) {
     check_keys(*it, "detail.", keys_of<SurfaceDetailOptions>());
     read_fields(*it, "detail.", o.detail);
   }
+  if (auto it = j.find("refit"); it != j.end()) {
+    check_keys(*it, "refit.", keys_of<RefitOptions>());
+    read_fields(*it, "refit.", o.refit);
+  }
 }
 
 json to_json(const FitOptions& o) {
@@ -199,6 +212,7 @@ json to_json(const FitOptions& o) {
   for (const StageOptions* s : o.stages()) out[s->name] = write_fields(*s);
   out["solver"] = write_fields(o.solver);
   out["detail"] = write_fields(o.detail);
+  out["refit"] = write_fields(o.refit);
   return out;
 }
 

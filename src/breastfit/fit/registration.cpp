@@ -469,13 +469,18 @@ FitResult refit_template(const model::RiggedModel& model, ScanTarget& scan, std:
   summary.initialization = "warm start";
   summary.landmarks_used = static_cast<int>(landmarks.size());
   model::PoseParams params = start;
-  auto problem = std::make_unique<Problem>(model, scan, options, landmarks);
+  // The re-fit's own schedule (RefitOptions): outlives the problem, which keeps a reference.
+  FitOptions warm = options;
+  if (options.refit.final_threshold) warm.correspondences.max_distance_start_mm = options.correspondences.max_distance_end_mm;
+  warm.refine.max_iterations = options.refit.max_iterations;
+  warm.solver.vertex_tolerance_mm = std::max(options.solver.vertex_tolerance_mm, options.refit.vertex_tolerance_mm);
+  auto problem = std::make_unique<Problem>(model, scan, warm, landmarks);
   problem->evaluator().set_params(params);
   summary.timings.push_back({"initialization", phase.seconds()});
-  summary.termination = minimize_stages(*problem, {options.refine}, params, summary, on_iteration);
+  summary.termination = minimize_stages(*problem, {warm.refine}, params, summary, on_iteration);
   const PlacedCheck placed =
-      hold_off_misplaced(model, scan, problem, params, landmarks, options, summary, on_iteration, false);
-  finish_fit(model, scan, *problem, params, landmarks, options, placed, result);
+      hold_off_misplaced(model, scan, problem, params, landmarks, warm, summary, on_iteration, false);
+  finish_fit(model, scan, *problem, params, landmarks, warm, placed, result);
   summary.seconds = timer.seconds();
   return result;
 }

@@ -27,9 +27,12 @@ std::vector<int> active_parameters(const model::ParamLayout& layout, const Stage
 namespace {
 
 // The convergence tests of one finished iteration (only asked once the stage's threshold is final).
-std::optional<Termination> convergence(const SolverOptions& o, const IterationRecord& rec, bool fresh_hessian) {
+// `step_mm`: how far the accepted step moved the farthest model vertex.
+std::optional<Termination> convergence(const SolverOptions& o, const IterationRecord& rec, bool fresh_hessian,
+                                       double step_mm) {
   if (rec.gradient_max <= o.gradient_tolerance) return Termination::GradientTolerance;
   if (!rec.accepted) return fresh_hessian ? std::optional(Termination::NoFurtherDecrease) : std::nullopt;
+  if (step_mm < o.vertex_tolerance_mm) return Termination::ParameterTolerance;
   const double rel = (rec.energy_before - rec.energy_after) / std::max(rec.energy_before, 1e-300);
   if (rel < o.function_tolerance) return Termination::FunctionTolerance;
   if (rec.step_norm < o.parameter_tolerance) return Termination::ParameterTolerance;
@@ -74,7 +77,7 @@ class StageRun {
     rec.damping = strategy_.damping();
     rebuild_next_ = !rec.accepted;  // a stale Hessian that fails gets rebuilt
     const bool final_threshold = !stage_.use_data || schedule_.at_stage_end(data_stage_, it, stage_.max_iterations);
-    if (final_threshold && it > 0) return convergence(options_, rec, rebuild);
+    if (final_threshold && it > 0) return convergence(options_, rec, rebuild, step_mm_);
     return std::nullopt;
   }
 
@@ -93,6 +96,8 @@ class StageRun {
     auto& ev = problem_.evaluator();
     const auto& layout = ev.layout();
     Eigen::VectorXd delta = Eigen::VectorXd::Zero(layout.num_params());
+    const Points before = options_.vertex_tolerance_mm > 0 ? ev.vertices() : Points();
+    step_mm_ = 0;
     for (int attempt = 0; attempt < options_.max_step_attempts && !strategy_.exhausted(); ++attempt) {
       const LmStep step = strategy_.compute_step(H_, eq_.g());
       if (!step.ok) continue;
@@ -110,6 +115,7 @@ class StageRun {
         rec.energy_after = e1;
         rec.step_norm = step.x.cwiseAbs().maxCoeff();
         strategy_.step_accepted(rho);
+        if (before.rows() == ev.vertices().rows()) step_mm_ = (ev.vertices() - before).rowwise().norm().maxCoeff();
         return;
       }
       strategy_.step_rejected();
@@ -129,6 +135,7 @@ class StageRun {
   bool use_reverse_;  // the reverse term is used in the stages that move blendshapes
   bool rebuild_next_ = true;
   double max_dist_ = 0;  // the threshold the current pairs were found with
+  double step_mm_ = 0;  // the farthest vertex move of the last accepted step (when vertex_tolerance_mm > 0)
 };
 
 }  // namespace

@@ -1,7 +1,9 @@
 #include "breastfit/metrics/surface_coverage.h"
 
 #include <cmath>
+#include <limits>
 #include <numbers>
+#include <optional>
 
 #include "breastfit/mesh/normals.h"
 
@@ -21,26 +23,35 @@ std::vector<double> SurfaceCoverage::covered_distances() const {
 
 DistanceStats SurfaceCoverage::stats() const { return distance_stats(covered_distances()); }
 
-SurfaceCoverage surface_coverage(const TriangleMesh& fitted, const fit::ScanTarget& scan, const CoverageOptions& options) {
+SurfaceCoverage surface_coverage(const TriangleMesh& fitted, const fit::ScanTarget& scan, const CoverageOptions& options,
+                                 std::vector<Index>* hints) {
   SurfaceCoverage out;
   out.options = options;
   const Index n = fitted.V.rows();
-  out.distance_mm.resize(static_cast<size_t>(n));
+  out.distance_mm.assign(static_cast<size_t>(n), std::numeric_limits<double>::infinity());
   out.covered.assign(static_cast<size_t>(n), 0);
   const Points N = fitted.F.rows() > 0 ? mesh::vertex_normals(fitted) : Points();
   const double cos_max = std::cos(options.max_normal_angle_deg * std::numbers::pi / 180.0);
-  std::vector<fit::ScanMatch> matches(static_cast<size_t>(n));
+  // Only the scan within max_distance_mm can cover a vertex: the searches stop there.
+  std::vector<std::optional<fit::ScanMatch>> matches(static_cast<size_t>(n));
+  const bool own_hints = hints && static_cast<Index>(hints->size()) == n;
+  if (hints && !own_hints) hints->assign(static_cast<size_t>(n), -1);
   Index hint = -1;  // neighbouring vertices have neighbouring closest points: a warm start
   double agree = 0, disagree = 0;  // the scan's normals face the model's way, or the other
   for (Index i = 0; i < n; ++i) {
-    const fit::ScanMatch& m = matches[static_cast<size_t>(i)] = scan.closest(fitted.V.row(i).transpose(), &hint);
-    out.distance_mm[static_cast<size_t>(i)] = std::sqrt(m.sq_dist);
-    if (N.rows() == n && !m.on_boundary && m.sq_dist <= options.max_distance_mm * options.max_distance_mm)
-      (N.row(i).dot(m.normal.transpose()) >= 0 ? agree : disagree) += 1;
+    Index* h = &hint;
+    if (own_hints && (*hints)[static_cast<size_t>(i)] >= 0) h = &(*hints)[static_cast<size_t>(i)];
+    auto& m = matches[static_cast<size_t>(i)] = scan.match(fitted.V.row(i).transpose(), options.max_distance_mm, h);
+    if (!m) continue;
+    if (h != &hint) hint = *h;
+    if (hints) (*hints)[static_cast<size_t>(i)] = hint;
+    out.distance_mm[static_cast<size_t>(i)] = std::sqrt(m->sq_dist);
+    if (N.rows() == n && !m->on_boundary) (N.row(i).dot(m->normal.transpose()) >= 0 ? agree : disagree) += 1;
   }
   const double sign = agree >= disagree ? 1.0 : -1.0;
   for (Index i = 0; i < n; ++i) {
-    const fit::ScanMatch& m = matches[static_cast<size_t>(i)];
+    if (!matches[static_cast<size_t>(i)]) continue;
+    const fit::ScanMatch& m = *matches[static_cast<size_t>(i)];
     const double d = out.distance_mm[static_cast<size_t>(i)];
     if (options.skip_border && m.on_boundary) continue;
     if (d > options.max_distance_mm) continue;

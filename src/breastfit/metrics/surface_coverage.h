@@ -35,7 +35,9 @@ struct CoverageOptions {
 
 /// Per-vertex distances and coverage of a fitted model against the scan.
 struct SurfaceCoverage {
-  std::vector<double> distance_mm;    ///< |v − c| for every vertex
+  /// |v − c| for every vertex within max_distance_mm of the scan; +∞ beyond (not covered: the
+  /// search stops there)
+  std::vector<double> distance_mm;
   std::vector<std::uint8_t> covered;  ///< 1 when the vertex is covered (see the file comment)
   Index covered_count = 0;
   CoverageOptions options;            ///< the rules applied
@@ -47,8 +49,11 @@ struct SurfaceCoverage {
   DistanceStats stats() const;
 };
 
-/// Coverage of the mesh `fitted` (mm, consistently oriented triangles) by `scan`.
+/// Coverage of the mesh `fitted` (mm, consistently oriented triangles) by `scan`. `hints`
+/// (optional, in/out): per vertex, the scan face to start its search from (< 0: the previous
+/// vertex's), set to the face found — e.g. from the coverage of the same model with other offsets;
+/// only the speed depends on them (a vector of another size is replaced).
 SurfaceCoverage surface_coverage(const TriangleMesh& fitted, const fit::ScanTarget& scan,
-                                 const CoverageOptions& options = {});
+                                 const CoverageOptions& options = {}, std::vector<Index>* hints = nullptr);
 
 }  // namespace breastfit::metrics

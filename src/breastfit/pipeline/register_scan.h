@@ -59,7 +59,9 @@ struct RegisterResult {
   std::vector<std::string> warnings;    ///< everything the user should know
   double time_s = 0;                    ///< scan + landmarks in memory → fitted parameters (index build included)
   /// Wall time per phase: scan_preparation, index_build, the fit's (initialization, stage:<name>,
-  /// final_state, surface_detail), transfer, measurements.
+  /// final_state, surface_detail), transfer, measurements, then measurements:breast_volumes (the
+  /// breast volumes' own time: part of measurements, or, with a second thread, measured beside
+  /// the transfer and the distances).
   std::vector<fit::PhaseTime> timings;
   std::optional<Provenance> provenance;  ///< RegisterRequest::provenance with the effective options
 
