@@ -284,6 +284,10 @@ void Rasterizer::draw_mesh(const Points& V, const Triangles& F, const Points& N,
                     e0.dy * p0.depth + e1.dy * p1.depth + e2.dy * p2.depth,
                     e0.c * p0.depth + e1.c * p1.depth + e2.c * p2.depth};
     const Linear* edges[3] = {&e0, &e1, &e2};
+    // Where each edge function crosses zero along a row: −a / dx, by a reciprocal taken once per
+    // triangle (the one-sample widening below absorbs its rounding).
+    const double inv_dx[3] = {e0.dx != 0 ? 1.0 / e0.dx : 0.0, e1.dx != 0 ? 1.0 / e1.dx : 0.0,
+                              e2.dx != 0 ? 1.0 / e2.dx : 0.0};
     bool wrote = false;
     for (int y = ys.lo; y <= ys.hi; ++y) {
       const double py = y + 0.5;
@@ -291,12 +295,13 @@ void Rasterizer::draw_mesh(const Points& V, const Triangles& F, const Points& N,
       // The samples of this row inside all three edges, from where each edge function crosses
       // zero, one sample wider on each side for rounding (the exact test below decides).
       int n_lo = 0, n_hi = xs.hi - xs.lo;
-      for (const Linear* e : edges) {
+      for (int j = 0; j < 3; ++j) {
+        const Linear* e = edges[j];
         const double a = e->at(x_start, py);
         if (e->dx > 0) {
-          if (a < 0) n_lo = std::max(n_lo, static_cast<int>(std::min(-a / e->dx, 1e9)) - 1);  // -a / dx > 0
+          if (a < 0) n_lo = std::max(n_lo, static_cast<int>(std::min(-a * inv_dx[j], 1e9)) - 1);  // -a / dx > 0
         } else if (e->dx < 0) {
-          n_hi = std::min(n_hi, static_cast<int>(std::clamp(a / -e->dx, -1e9, 1e9)) + 1);
+          n_hi = std::min(n_hi, static_cast<int>(std::clamp(-a * inv_dx[j], -1e9, 1e9)) + 1);
         } else if (a < 0) {
           n_hi = -1;
         }
@@ -382,6 +387,7 @@ void Rasterizer::draw_mesh(const Points& V, const Triangles& F, const Points& N,
   // up to the normalisation); other blocks are shaded sample by sample (edges stay anti-aliased).
   constexpr double kFlatPixels = 2.0;
   const int ss = options_.supersample;
+  const double flat_depth_ortho = kFlatPixels * camera_.world_per_pixel(0.0, options_.height);  // orthographic: any depth
   for (int y0 = by0 / ss * ss; y0 <= by1; y0 += ss)
     for (int x0 = bx0 / ss * ss; x0 <= bx1; x0 += ss) {
       const std::int32_t t0 = winner[static_cast<size_t>(y0) * w_ + x0];
@@ -397,7 +403,7 @@ void Rasterizer::draw_mesh(const Points& V, const Triangles& F, const Points& N,
             lo = std::min(lo, depth_[idx]);
             hi = std::max(hi, depth_[idx]);
           }
-        flat = flat && hi - lo <= kFlatPixels * camera_.world_per_pixel(lo, options_.height);
+        flat = flat && hi - lo <= (perspective ? kFlatPixels * camera_.world_per_pixel(lo, options_.height) : flat_depth_ortho);
       }
       if (flat) {
         Sample mean{Vec3::Zero(), Vec3::Zero()};
