@@ -2,7 +2,8 @@
 #   P/include/breastfit/<layer>/*.h          public headers (detail/ headers are private to their layer)
 #   P/lib/libbreastfit_<layer>.a             the layer libraries
 #   P/lib/cmake/breastfit/                   breastfitConfig.cmake, breastfitConfigVersion.cmake,
-#                                            breastfitTargets*.cmake, stb.cmake
+#                                            breastfitTargets*.cmake, stb.cmake,
+#                                            libdeflate.cmake
 #   P/bin/breastfit                          the CLI (apps/cli/CMakeLists.txt)
 #   P/share/breastfit/default_torso.glb      the shipped template
 # so that a consumer's find_package(breastfit) gives breastfit::breastfit and breastfit::<layer>.
@@ -23,5 +24,5 @@ configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/breastfitConfig.cmake.
 write_basic_package_version_file(${PROJECT_BINARY_DIR}/breastfitConfigVersion.cmake
                                  COMPATIBILITY SameMinorVersion)
 install(FILES ${PROJECT_BINARY_DIR}/breastfitConfig.cmake ${PROJECT_BINARY_DIR}/breastfitConfigVersion.cmake
-              ${PROJECT_SOURCE_DIR}/cmake/deps/stb.cmake
+              ${PROJECT_SOURCE_DIR}/cmake/deps/stb.cmake ${PROJECT_SOURCE_DIR}/cmake/deps/libdeflate.cmake
         DESTINATION ${_breastfit_cmake_dir})

@@ -59,6 +59,43 @@ TEST(Image, DownsampleAveragesBlocks) {
   EXPECT_THROW(img.downsampled(0), InvalidInput);
 }
 
+TEST(Image, FillAndDownsampleEveryPixel) {
+  // Grey and coloured fills reach every pixel; factor 2 (its own loop) and 3 average every
+  // block, rounded half up.
+  for (const Rgb c : {Rgb{255, 255, 255}, Rgb{10, 20, 30}}) {
+    Image img(7, 5, {1, 2, 3});
+    img.fill(c);
+    for (int y = 0; y < 5; ++y)
+      for (int x = 0; x < 7; ++x) EXPECT_EQ(img.at(x, y), c) << x << " " << y;
+  }
+  Image img(12, 6);
+  std::uint32_t seed = 7;
+  for (int y = 0; y < 6; ++y)
+    for (int x = 0; x < 12; ++x) {
+      seed = seed * 1664525u + 1013904223u;
+      img.set(x, y, {static_cast<std::uint8_t>(seed >> 24), static_cast<std::uint8_t>(seed >> 16), static_cast<std::uint8_t>(seed >> 8)});
+    }
+  for (int f : {2, 3}) {
+    const Image small = img.downsampled(f);
+    ASSERT_EQ(small.width(), 12 / f);
+    for (int y = 0; y < small.height(); ++y)
+      for (int x = 0; x < small.width(); ++x) {
+        int sum[3] = {0, 0, 0};
+        for (int dy = 0; dy < f; ++dy)
+          for (int dx = 0; dx < f; ++dx) {
+            const Rgb p = img.at(x * f + dx, y * f + dy);
+            sum[0] += p.r;
+            sum[1] += p.g;
+            sum[2] += p.b;
+          }
+        const int n = f * f;
+        EXPECT_EQ(small.at(x, y), (Rgb{static_cast<std::uint8_t>((sum[0] + n / 2) / n), static_cast<std::uint8_t>((sum[1] + n / 2) / n),
+                                       static_cast<std::uint8_t>((sum[2] + n / 2) / n)}))
+            << f << ": " << x << " " << y;
+      }
+  }
+}
+
 TEST(Image, PngRoundTripAndDeterminism) {
   Image img(17, 9, {250, 250, 250});
   for (int y = 0; y < 9; ++y)

@@ -43,7 +43,7 @@ std::uint32_t u32(const std::vector<std::uint8_t>& b, size_t at) {
 TEST(PngEncoder, EveryFilterAndLevelDecodesToTheSamePixels) {
   const Image img = picture(37, 23);
   for (PngFilter f : {PngFilter::None, PngFilter::Sub, PngFilter::Up, PngFilter::Average, PngFilter::Paeth})
-    for (int level : {0, 1, 6, 9}) {
+    for (int level : {0, 1, 6, 9, 12}) {
       const Image back = decode(encode_png_rgb8(img.bytes(), img.width(), img.height(), {level, f}));
       ASSERT_EQ(back.width(), 37);
       ASSERT_EQ(back.height(), 23);
@@ -81,7 +81,7 @@ TEST(PngEncoder, ChunksAreWellFormed) {
 TEST(PngEncoder, DeterministicAndSmallerAtHigherLevels) {
   const Image img = picture(200, 120);
   EXPECT_EQ(encode_png_rgb8(img.bytes(), 200, 120), encode_png_rgb8(img.bytes(), 200, 120));
-  EXPECT_LE(encode_png_rgb8(img.bytes(), 200, 120, {9, PngFilter::Sub}).size(),
+  EXPECT_LE(encode_png_rgb8(img.bytes(), 200, 120, {12, PngFilter::Sub}).size(),
             encode_png_rgb8(img.bytes(), 200, 120, {0, PngFilter::Sub}).size());
 }
 
@@ -89,7 +89,8 @@ TEST(PngEncoder, RefusesInvalidInput) {
   const std::vector<std::uint8_t> px(3 * 4 * 4, 0);
   EXPECT_THROW(encode_png_rgb8(px, 0, 4), InvalidInput);
   EXPECT_THROW(encode_png_rgb8(px, 4, 5), InvalidInput);
-  EXPECT_THROW(encode_png_rgb8(px, 4, 4, {10, PngFilter::Sub}), InvalidInput);
+  EXPECT_THROW(encode_png_rgb8(px, 4, 4, {13, PngFilter::Sub}), InvalidInput);
+  EXPECT_THROW(encode_png_rgb8(px, 4, 4, {-1, PngFilter::Sub}), InvalidInput);
   EXPECT_NO_THROW(encode_png_rgb8(px, 4, 4));
 }
 

@@ -1,9 +1,11 @@
 #include "breastfit/render/png_encoder.h"
 
 #include <cstdlib>
+#include <memory>
 #include <stdexcept>
 #include <string>
 
+#include <libdeflate.h>
 #include <zlib.h>
 
 #include "breastfit/core/errors.h"
@@ -67,18 +69,21 @@ std::vector<std::uint8_t> encode_png_rgb8(const std::vector<std::uint8_t>& rgb, 
   if (rgb.size() != stride * static_cast<size_t>(height))
     throw InvalidInput("encode_png_rgb8: " + std::to_string(rgb.size()) + " bytes for a " + std::to_string(width) +
                        "x" + std::to_string(height) + " RGB image");
-  if (options.zlib_level < 0 || options.zlib_level > 9)
-    throw InvalidInput("encode_png_rgb8: zlib_level must be in [0, 9], got " + std::to_string(options.zlib_level));
+  if (options.level < 0 || options.level > 12)
+    throw InvalidInput("encode_png_rgb8: level must be in [0, 12], got " + std::to_string(options.level));
 
   std::vector<std::uint8_t> filtered((stride + 1) * static_cast<size_t>(height));
   for (int y = 0; y < height; ++y)
     filter_row(options.filter, &rgb[stride * y], y > 0 ? &rgb[stride * (y - 1)] : nullptr, stride,
                &filtered[(stride + 1) * y]);
 
-  uLongf zlen = compressBound(static_cast<uLong>(filtered.size()));
-  std::vector<std::uint8_t> z(zlen);
-  if (compress2(z.data(), &zlen, filtered.data(), static_cast<uLong>(filtered.size()), options.zlib_level) != Z_OK)
-    throw std::runtime_error("encode_png_rgb8: zlib compress2 failed");
+  // The IDAT data is a zlib stream; libdeflate writes one from the whole buffer at once.
+  const std::unique_ptr<libdeflate_compressor, void (*)(libdeflate_compressor*)> compressor(
+      libdeflate_alloc_compressor(options.level), libdeflate_free_compressor);
+  if (!compressor) throw std::runtime_error("encode_png_rgb8: libdeflate could not allocate a compressor");
+  std::vector<std::uint8_t> z(libdeflate_zlib_compress_bound(compressor.get(), filtered.size()));
+  const size_t zlen = libdeflate_zlib_compress(compressor.get(), filtered.data(), filtered.size(), z.data(), z.size());
+  if (zlen == 0) throw std::runtime_error("encode_png_rgb8: libdeflate could not compress the image");
 
   std::vector<std::uint8_t> out = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
   out.reserve(out.size() + zlen + 64);

@@ -1,6 +1,7 @@
 #include "breastfit/render/rasterizer.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -196,11 +197,11 @@ void Rasterizer::draw_mesh(const Points& V, const Triangles& F, const Points& N,
   // in a direct renderer: of equal depths the first drawn wins); pass 2 shades each covered pixel
   // once with that triangle, without shading surfaces that are drawn over later (the back of the
   // torso).
-  struct Tri {
-    double area = 0;  // signed area in the image, twice; negative: the triangle faces the camera
-    bool front = false;
-  };
-  std::vector<Tri> tris(static_cast<size_t>(F.rows()));
+  // Per triangle: its signed area in the image, twice (negative: it faces the camera), and
+  // whether it faces the camera, in an array of its own (one byte a triangle: pass 2 looks it
+  // up for every sample's winner, and 16-byte records made that lookup a cache miss).
+  std::vector<double> tri_area(static_cast<size_t>(F.rows()), 0.0);
+  std::vector<std::uint8_t> tri_front(static_cast<size_t>(F.rows()), 0);
   std::vector<std::int32_t> winner(static_cast<size_t>(w_) * h_, -1);
   int bx0 = w_, by0 = h_, bx1 = -1, by1 = -1;  // a box around the pixels won by this call
   // Triangles in screen tiles of 32 × 32 pixels (row-major; stable within a tile), so that the
@@ -224,7 +225,8 @@ void Rasterizer::draw_mesh(const Points& V, const Triangles& F, const Points& N,
     const double area = edge(p0, p1, p2.x, p2.y);
     if (!(std::abs(area) > 1e-12)) continue;
     const bool front = area < 0;
-    tris[static_cast<size_t>(t)] = {area, front};
+    tri_area[static_cast<size_t>(t)] = area;
+    tri_front[static_cast<size_t>(t)] = front;
     const double cx = (p0.x + p1.x + p2.x) / 3.0, cy = (p0.y + p1.y + p2.y) / 3.0;
     const int tx = std::clamp(pixel_index(cx), 0, w_ - 1) / kTile, ty = std::clamp(pixel_index(cy), 0, h_ - 1) / kTile;
     const int bucket = (front ? 0 : tiles) + ty * tiles_x + tx;
@@ -238,6 +240,14 @@ void Rasterizer::draw_mesh(const Points& V, const Triangles& F, const Points& N,
     if (bucket_of[static_cast<size_t>(t)] >= 0)
       order[static_cast<size_t>(bucket_start[static_cast<size_t>(bucket_of[t])]++)] = static_cast<std::int32_t>(t);
   bucket_of = {};
+  // The triangles' projected corners gathered in that order by a loop of their own (its loads
+  // are independent, so their cache misses overlap) for the loop below to read one after the
+  // other instead of chasing F and P from inside its longer body.
+  std::vector<std::array<Projected, 3>> corners(order.size());
+  for (size_t k = 0; k < order.size(); ++k) {
+    const std::int32_t t = order[k];
+    corners[k] = {P[F(t, 0)], P[F(t, 1)], P[F(t, 2)]};
+  }
 
   // The farthest depth drawn in each block of kBlock × kBlock pixels (+inf where a pixel is
   // empty), filled after the front faces: a triangle no nearer than that over all the blocks
@@ -263,9 +273,8 @@ void Rasterizer::draw_mesh(const Points& V, const Triangles& F, const Points& N,
   for (size_t k = 0; k < order.size(); ++k) {
     if (k == n_front) fill_block_far();
     const std::int32_t t = order[k];
-    const Index i0 = F(t, 0), i1 = F(t, 1), i2 = F(t, 2);
-    const Projected &p0 = P[i0], &p1 = P[i1], &p2 = P[i2];
-    const double area = tris[static_cast<size_t>(t)].area;
+    const Projected &p0 = corners[k][0], &p1 = corners[k][1], &p2 = corners[k][2];
+    const double area = tri_area[static_cast<size_t>(t)];
     const Span xs = pixel_span(std::min({p0.x, p1.x, p2.x}), std::max({p0.x, p1.x, p2.x}), w_);
     const Span ys = pixel_span(std::min({p0.y, p1.y, p2.y}), std::max({p0.y, p1.y, p2.y}), h_);
     if (xs.lo > xs.hi || ys.lo > ys.hi) continue;
@@ -284,6 +293,10 @@ void Rasterizer::draw_mesh(const Points& V, const Triangles& F, const Points& N,
                     e0.dy * p0.depth + e1.dy * p1.depth + e2.dy * p2.depth,
                     e0.c * p0.depth + e1.c * p1.depth + e2.c * p2.depth};
     const Linear* edges[3] = {&e0, &e1, &e2};
+    // Where each edge function crosses zero along a row: −a / dx, by a reciprocal taken once per
+    // triangle (the one-sample widening below absorbs its rounding).
+    const double inv_dx[3] = {e0.dx != 0 ? 1.0 / e0.dx : 0.0, e1.dx != 0 ? 1.0 / e1.dx : 0.0,
+                              e2.dx != 0 ? 1.0 / e2.dx : 0.0};
     bool wrote = false;
     for (int y = ys.lo; y <= ys.hi; ++y) {
       const double py = y + 0.5;
@@ -291,12 +304,13 @@ void Rasterizer::draw_mesh(const Points& V, const Triangles& F, const Points& N,
       // The samples of this row inside all three edges, from where each edge function crosses
       // zero, one sample wider on each side for rounding (the exact test below decides).
       int n_lo = 0, n_hi = xs.hi - xs.lo;
-      for (const Linear* e : edges) {
+      for (int j = 0; j < 3; ++j) {
+        const Linear* e = edges[j];
         const double a = e->at(x_start, py);
         if (e->dx > 0) {
-          if (a < 0) n_lo = std::max(n_lo, static_cast<int>(std::min(-a / e->dx, 1e9)) - 1);  // -a / dx > 0
+          if (a < 0) n_lo = std::max(n_lo, static_cast<int>(std::min(-a * inv_dx[j], 1e9)) - 1);  // -a / dx > 0
         } else if (e->dx < 0) {
-          n_hi = std::min(n_hi, static_cast<int>(std::clamp(a / -e->dx, -1e9, 1e9)) + 1);
+          n_hi = std::min(n_hi, static_cast<int>(std::clamp(-a * inv_dx[j], -1e9, 1e9)) + 1);
         } else if (a < 0) {
           n_hi = -1;
         }
@@ -336,10 +350,10 @@ void Rasterizer::draw_mesh(const Points& V, const Triangles& F, const Points& N,
     Vec3 n, base;
   };
   auto sample_at = [&](double px, double py, std::int32_t t) -> Sample {
-    const Tri& tri = tris[static_cast<size_t>(t)];
+    const bool front = tri_front[static_cast<size_t>(t)] != 0;
     const Index i0 = F(t, 0), i1 = F(t, 1), i2 = F(t, 2);
     const Projected &p0 = P[i0], &p1 = P[i1], &p2 = P[i2];
-    const double inv_area = 1.0 / tri.area;
+    const double inv_area = 1.0 / tri_area[static_cast<size_t>(t)];
     double b0 = edge(p1, p2, px, py) * inv_area;
     double b1 = edge(p2, p0, px, py) * inv_area;
     double b2 = edge(p0, p1, px, py) * inv_area;
@@ -357,10 +371,10 @@ void Rasterizer::draw_mesh(const Points& V, const Triangles& F, const Points& N,
     if (!(n.squaredNorm() > 0)) {  // flat shading, or no usable vertex normals: the face's normal
       const Vec3 v0 = V.row(i0);
       n = (Vec3(V.row(i1)) - v0).cross(Vec3(V.row(i2)) - v0);
-      if (!(n.squaredNorm() > 0)) n = tri.front ? Vec3(-f) : Vec3(f);  // degenerate in 3D
+      if (!(n.squaredNorm() > 0)) n = front ? Vec3(-f) : Vec3(f);  // degenerate in 3D
     }
     n.normalize();
-    if (!tri.front) n = -n;
+    if (!front) n = -n;
     // Interpolated normals may turn away at silhouettes; keep them facing the viewer.
     const Vec3 view = perspective ? Vec3((camera_.eye - (b0 * Vec3(V.row(i0)) + b1 * Vec3(V.row(i1)) +
                                                            b2 * Vec3(V.row(i2))))
@@ -371,7 +385,7 @@ void Rasterizer::draw_mesh(const Points& V, const Triangles& F, const Points& N,
   };
   auto shade_sample = [&](int x, int y, std::int32_t t) {
     const Sample s = sample_at(x + 0.5, y + 0.5, t);
-    return scale_rgb(shade(s.base, s.n, tris[static_cast<size_t>(t)].front, light, style));
+    return scale_rgb(shade(s.base, s.n, tri_front[static_cast<size_t>(t)] != 0, light, style));
   };
 
   // Pass 2, by output pixel (a block of ss × ss samples). A block whose samples all show this
@@ -382,22 +396,23 @@ void Rasterizer::draw_mesh(const Points& V, const Triangles& F, const Points& N,
   // up to the normalisation); other blocks are shaded sample by sample (edges stay anti-aliased).
   constexpr double kFlatPixels = 2.0;
   const int ss = options_.supersample;
+  const double flat_depth_ortho = kFlatPixels * camera_.world_per_pixel(0.0, options_.height);  // orthographic: any depth
   for (int y0 = by0 / ss * ss; y0 <= by1; y0 += ss)
     for (int x0 = bx0 / ss * ss; x0 <= bx1; x0 += ss) {
       const std::int32_t t0 = winner[static_cast<size_t>(y0) * w_ + x0];
       bool flat = t0 >= 0 && ss > 1, one_triangle = true;
       if (flat) {
-        const bool front = tris[static_cast<size_t>(t0)].front;
+        const std::uint8_t front = tri_front[static_cast<size_t>(t0)];
         float lo = depth_[static_cast<size_t>(y0) * w_ + x0], hi = lo;
         for (int dy = 0; dy < ss && flat; ++dy)
           for (int dx = 0; dx < ss && flat; ++dx) {
             const size_t idx = static_cast<size_t>(y0 + dy) * w_ + x0 + dx;
-            flat = winner[idx] >= 0 && tris[static_cast<size_t>(winner[idx])].front == front;
+            flat = winner[idx] >= 0 && tri_front[static_cast<size_t>(winner[idx])] == front;
             one_triangle = one_triangle && winner[idx] == t0;
             lo = std::min(lo, depth_[idx]);
             hi = std::max(hi, depth_[idx]);
           }
-        flat = flat && hi - lo <= kFlatPixels * camera_.world_per_pixel(lo, options_.height);
+        flat = flat && hi - lo <= (perspective ? kFlatPixels * camera_.world_per_pixel(lo, options_.height) : flat_depth_ortho);
       }
       if (flat) {
         Sample mean{Vec3::Zero(), Vec3::Zero()};
@@ -414,7 +429,7 @@ void Rasterizer::draw_mesh(const Points& V, const Triangles& F, const Points& N,
             }
         }
         const double norm = mean.n.norm();
-        const Rgb c = norm > 0 ? scale_rgb(shade(mean.base / (ss * ss), mean.n / norm, tris[static_cast<size_t>(t0)].front,
+        const Rgb c = norm > 0 ? scale_rgb(shade(mean.base / (ss * ss), mean.n / norm, tri_front[static_cast<size_t>(t0)] != 0,
                                                  light, style))
                                : shade_sample(x0, y0, t0);
         for (int dy = 0; dy < ss; ++dy)
