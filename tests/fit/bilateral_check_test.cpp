@@ -15,12 +15,6 @@ namespace {
 
 using namespace test_anatomy;  // the synthetic torsos, their truth and body frame
 
-std::vector<LandmarkTarget> truth_targets(const synth::SynthCase& c) {
-  std::vector<LandmarkTarget> out;
-  for (const auto& p : c.truth_landmarks) out.push_back({p.name, 0, p.position, 1.0});
-  return out;
-}
-
 void move(std::vector<LandmarkTarget>& landmarks, const std::string& name, const Vec3& by) {
   for (auto& t : landmarks)
     if (t.name == name) t.position += by;
