@@ -310,8 +310,8 @@ void check_pairs(const std::vector<LandmarkTarget>& given, const FitOptions& opt
 // where the other landmarks put it (`predicted`; the fitted one without predictions, since the
 // fit follows a wrong click): the nipples at the breast's tip (landmark_check.h; along the scan's
 // own normals: the fitted model's turn with a wrongly placed nipple), the notch at the jugular
-// notch on the other landmarks' midline (midline_notch_check.h); the other bilateral landmarks
-// against their partner's mirror image (check_pairs).
+// notch on the other landmarks' midline (midline_notch_check.h); the acromia, mid-axillary and
+// lowest breast points against their partner's mirror image (check_pairs).
 std::vector<std::optional<AnatomyCheck>> check_anatomy(const model::RiggedModel& model, Problem& problem,
                                                        const model::PoseParams& params, const ScanTarget& scan,
                                                        const std::vector<LandmarkTarget>& given,
