@@ -16,12 +16,6 @@ namespace {
 
 using namespace test_anatomy;  // the synthetic torsos, their truth and body frame
 
-std::vector<LandmarkTarget> truth_targets(const synth::SynthCase& c) {
-  std::vector<LandmarkTarget> out;
-  for (const auto& p : c.truth_landmarks) out.push_back({p.name, 0, p.position, 1.0});
-  return out;
-}
-
 double plane_distance(const MidPlane& plane, const Vec3& p) { return std::abs((p - plane.point).dot(plane.normal)); }
 
 TEST(MidlineNotchCheck, MidplaneOfTheLandmarksIsTheBodysMidline) {

@@ -1,12 +1,14 @@
 #pragma once
 /// \file Synthetic torsos (standing seed 11, supine seed 12, made once per test binary) and their
-/// truth landmarks and body frame, for the tests of the anatomical detectors (breast fold,
-/// jugular notch).
+/// truth landmarks and body frame, for the tests of the anatomical detectors and checks (breast
+/// fold, jugular notch, the midline notch, the bilateral pairs).
 #include <gtest/gtest.h>
 
 #include <map>
 #include <string>
+#include <vector>
 
+#include "breastfit/fit/landmark_target.h"
 #include "breastfit/synth/synth_case.h"
 #include "support/default_template.h"
 
@@ -31,6 +33,13 @@ inline Vec3 truth(const synth::SynthCase& c, const std::string& name) {
     if (p.name == name) return p.position;
   ADD_FAILURE() << "no truth landmark " << name;
   return Vec3::Zero();
+}
+
+/// The case's truth landmarks as given landmarks (weight 1; the model index is not used).
+inline std::vector<LandmarkTarget> truth_targets(const synth::SynthCase& c) {
+  std::vector<LandmarkTarget> out;
+  for (const auto& p : c.truth_landmarks) out.push_back({p.name, 0, p.position, 1.0});
+  return out;
 }
 
 /// The body's superior and anterior axes.

@@ -8,6 +8,7 @@
 
 #include "breastfit/core/errors.h"
 #include "breastfit/core/timer.h"
+#include "breastfit/fit/bilateral_check.h"
 #include "breastfit/fit/breast_fold.h"
 #include "breastfit/fit/initialization.h"
 #include "breastfit/fit/jugular_notch.h"
@@ -290,11 +291,27 @@ void relinearize_suspects(Problem& problem, const model::PoseParams& params, con
     predicted[i] = predict_left_out_relinearized(problem, params, active, i, kRelinearizationSteps, at_end);
 }
 
+// Each bilateral pair against its mirror image (bilateral_check.h), the check kept by the member
+// it blames.
+void check_pairs(const std::vector<LandmarkTarget>& given, const FitOptions& options,
+                 std::vector<std::optional<AnatomyCheck>>& out) {
+  for (const BilateralCheck& c : check_bilateral_pairs(given, options.landmark_check_mm)) {
+    const size_t i = static_cast<size_t>(
+        std::find_if(given.begin(), given.end(), [&](const LandmarkTarget& t) { return t.name == c.blamed; }) -
+        given.begin());
+    const std::string& partner = c.blamed == c.right ? c.left : c.right;
+    if (i < out.size() && !out[i])
+      out[i] = AnatomyCheck{c.distance_mm, c.tolerance_mm,
+                            "the mirror image of '" + partner + "' across the other landmarks' midline, off " + c.axis};
+  }
+}
+
 // Each given nipple and sternal notch against its own definition on the scan, searched around
 // where the other landmarks put it (`predicted`; the fitted one without predictions, since the
 // fit follows a wrong click): the nipples at the breast's tip (landmark_check.h; along the scan's
 // own normals: the fitted model's turn with a wrongly placed nipple), the notch at the jugular
-// notch on the other landmarks' midline (midline_notch_check.h).
+// notch on the other landmarks' midline (midline_notch_check.h); the acromia, mid-axillary and
+// lowest breast points against their partner's mirror image (check_pairs).
 std::vector<std::optional<AnatomyCheck>> check_anatomy(const model::RiggedModel& model, Problem& problem,
                                                        const model::PoseParams& params, const ScanTarget& scan,
                                                        const std::vector<LandmarkTarget>& given,
@@ -318,6 +335,7 @@ std::vector<std::optional<AnatomyCheck>> check_anatomy(const model::RiggedModel&
         out[i] = AnatomyCheck{notch->distance_mm, notch->tolerance_mm, "the jugular notch on the scan's midline"};
     }
   }
+  check_pairs(given, options, out);
   return out;
 }
 

@@ -1,0 +1,66 @@
+#pragma once
+/// \file Checking a placed bilateral landmark against its partner on the other side: a left
+/// landmark mirrored across the body's midsagittal plane lies near the right one.
+///
+/// The fit and the prediction from the other landmarks (landmark_prediction.h) follow an acromion,
+/// a mid-axillary point or a lowest breast point walked 20–30 mm along the skin: the model slides there as freely without the landmark. Its partner on the other side does
+/// not move with it. The plane comes from the *other* landmarks, robustly (one wrong landmark among
+/// them must not tilt it): its normal is the component-wise median of the other pairs' unit
+/// right → left directions, its offset the median of the other pairs' midpoints and the notch and
+/// xiphoid along that normal. The left landmark's mirror image minus the right landmark, in the
+/// body's axes (sideways, along the sternum — notch → xiphoid made orthogonal to the normal —, front
+/// to back), is the pair's asymmetry.
+///
+/// The tolerances are per pair and per axis, about 1.25× the largest asymmetry of the landmarks as
+/// given on the 14 benchmark cases and 16 generated validation cases (sideways / vertical / depth):
+/// acromia 14.7 / 14.0 / 7.6 mm → 19 / 18 / 10, mid-axillary points 5.6 / 15.0 / 7.2 → 12 / 19 / 9
+/// (sideways raised: the arms hang differently; 8.7 mm on a template-made torso), lowest breast
+/// points 20.9 / 9.0 / 7.9 → 27 / 12 / 10 (ptotic, asymmetric breasts). Not checked this way: the
+/// nipples (asymmetric breasts: as given up to 34 mm; they have the breast's tip) and the pectoral
+/// insertions (they follow the arm: as given up to 24.7 / 18.7 mm apart on the bench, 15 mm front to
+/// back on a template-made torso with its arms at different angles). Of several pairs beyond their
+/// tolerance only the farthest is kept: a wrong landmark of one pair tilts the midline of the others.
+///
+/// A pair beyond a tolerance says that one of the two is wrong; which one, the sternum's
+/// proportions tell: each landmark's position from the notch (sideways from the plane, along the
+/// sternum, front to back) in sternum lengths (notch to xiphoid) against the pair's typical one
+/// (`typical_proportions`); the one farther off along the pair's worst axis is blamed. A landmark
+/// moved towards the typical proportions on a body far from them gets its partner blamed.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "breastfit/core/types.h"
+#include "breastfit/fit/landmark_target.h"
+
+namespace breastfit::fit {
+
+/// A bilateral pair's asymmetry against its tolerance.
+struct BilateralCheck {
+  std::string right, left;  ///< the pair's landmark names
+  Vec3 asymmetry = Vec3::Zero();  ///< mirrored left − right (mm): sideways, along the sternum, front to back
+  double distance_mm = 0;   ///< |asymmetry|
+  /// The tolerance box's radius along the asymmetry (mm): the pair is off when distance_mm > tolerance_mm.
+  double tolerance_mm = 0;
+  std::string blamed;  ///< the one of the two farther from the typical proportions (`right` or `left`)
+  std::string axis;  ///< the axis farthest beyond (or nearest to) its tolerance: "sideways", "vertically", "front to back"
+  bool flagged() const { return distance_mm > tolerance_mm; }
+};
+
+/// The typical position of the pair named `prefix` + "R" / "L" from the sternal notch, in sternum
+/// lengths: sideways from the midline (towards its side), along the sternum (up), front to back
+/// (towards the back); nullopt for a pair not checked this way.
+std::optional<Vec3> typical_proportions(const std::string& prefix);
+
+/// The per-axis tolerances (mm; sideways, along the sternum, front to back) of the pair whose
+/// landmarks are named `prefix` + "R" / "L" at landmark_check_mm = 15 mm, scaled with it; nullopt
+/// for a pair not checked this way.
+std::optional<Vec3> bilateral_tolerance_mm(const std::string& prefix, double landmark_check_mm);
+
+/// Every checked pair (acromia, mid-axillary points, lowest breast points)
+/// given on both sides, when the sternal notch, the xiphoid and at least two other pairs are given;
+/// of those beyond their tolerance only the farthest (relative to its tolerance).
+std::vector<BilateralCheck> check_bilateral_pairs(const std::vector<LandmarkTarget>& landmarks,
+                                                  double landmark_check_mm);
+
+}  // namespace breastfit::fit

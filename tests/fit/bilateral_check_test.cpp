@@ -1,0 +1,100 @@
+// A bilateral landmark checked against its partner mirrored across the other landmarks' midline:
+// on the synthetic torsos' truth landmarks (no pair off), one landmark moved along each axis
+// (its pair off, along that axis, and it blamed), and one wrong landmark of another pair (the midline holds).
+#include "breastfit/fit/bilateral_check.h"
+
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "fit/synth_anatomy.h"
+
+namespace breastfit::fit {
+namespace {
+
+using namespace test_anatomy;  // the synthetic torsos, their truth and body frame
+
+void move(std::vector<LandmarkTarget>& landmarks, const std::string& name, const Vec3& by) {
+  for (auto& t : landmarks)
+    if (t.name == name) t.position += by;
+}
+
+const BilateralCheck* pair_of(const std::vector<BilateralCheck>& checks, const std::string& right) {
+  for (const auto& c : checks)
+    if (c.right == right) return &c;
+  return nullptr;
+}
+
+TEST(BilateralCheck, TruthLandmarksAreSymmetricWithinTolerance) {
+  for (const auto pose : {synth::PoseType::Standing, synth::PoseType::Supine}) {
+    const auto checks = check_bilateral_pairs(truth_targets(synth_case(pose)), 15.0);
+    ASSERT_EQ(checks.size(), 3u);  // acromia, mid-axillary points, lowest breast points
+    for (const auto& c : checks) {
+      EXPECT_FALSE(c.flagged()) << c.right << ": " << c.distance_mm << " mm, tolerance " << c.tolerance_mm;
+      EXPECT_EQ(c.left.substr(0, c.left.size() - 1), c.right.substr(0, c.right.size() - 1));
+    }
+  }
+}
+
+// Each move takes the landmark away from the typical proportions on this template-made torso: a
+// move towards them can be blamed on the partner (bilateral_check.h).
+TEST(BilateralCheck, MovedLandmarkPutsItsPairOffAlongTheMove) {
+  const synth::SynthCase& c = synth_case(synth::PoseType::Standing);
+  const Frame f = body_frame(c);
+  const Vec3 side = f.up.cross(f.front);
+  const struct {
+    std::string name;
+    Vec3 by;
+    std::string axis;
+  } moves[] = {{"acromion_R", 25.0 * f.up, "vertically"},
+               {"lowest_breast_R", 20.0 * f.up, "vertically"},
+               {"midaxillary_R", 20.0 * f.front, "front to back"},
+               {"acromion_L", -30.0 * side, "sideways"}};
+  for (const auto& m : moves) {
+    auto landmarks = truth_targets(c);
+    move(landmarks, m.name, m.by);
+    const auto checks = check_bilateral_pairs(landmarks, 15.0);
+    const std::string right = m.name.substr(0, m.name.size() - 1) + "R";
+    const BilateralCheck* off = pair_of(checks, right);
+    ASSERT_NE(off, nullptr) << m.name;
+    EXPECT_TRUE(off->flagged()) << m.name << ": " << off->distance_mm << " mm, tolerance " << off->tolerance_mm;
+    EXPECT_EQ(off->axis, m.axis) << m.name;
+    EXPECT_EQ(off->blamed, m.name);  // moved away from the typical proportions, its partner not
+    for (const auto& other : checks)
+      if (other.right != right) EXPECT_FALSE(other.flagged()) << m.name << " moved, " << other.right << " flagged";
+    // Scaled with landmark_check_mm: a huge one turns the check off.
+    for (const auto& other : check_bilateral_pairs(landmarks, 1e6)) EXPECT_FALSE(other.flagged());
+  }
+}
+
+TEST(BilateralCheck, OneWrongLandmarkDoesNotTiltTheMidline) {
+  // A nipple clicked 40 mm off sideways tilts a mean right → left direction; the median holds.
+  const synth::SynthCase& c = synth_case(synth::PoseType::Supine);
+  const Frame f = body_frame(c);
+  auto landmarks = truth_targets(c);
+  move(landmarks, "nipple_L", 40.0 * f.up.cross(f.front) + 20.0 * f.up);
+  for (const auto& check : check_bilateral_pairs(landmarks, 15.0))
+    EXPECT_FALSE(check.flagged()) << check.right << ": " << check.distance_mm << " mm";
+}
+
+TEST(BilateralCheck, NeedsTheSternumAndTwoOtherPairs) {
+  const synth::SynthCase& c = synth_case(synth::PoseType::Standing);
+  auto landmarks = truth_targets(c);
+  std::vector<LandmarkTarget> no_notch;
+  for (const auto& t : landmarks)
+    if (t.name != "sternal_notch") no_notch.push_back(t);
+  EXPECT_TRUE(check_bilateral_pairs(no_notch, 15.0).empty());
+  std::vector<LandmarkTarget> two_pairs;  // acromia and mid-axillary points: each has one other pair
+  for (const auto& t : landmarks)
+    if (t.name.rfind("acromion_", 0) == 0 || t.name.rfind("midaxillary_", 0) == 0 || t.name == "sternal_notch" ||
+        t.name == "xiphoid")
+      two_pairs.push_back(t);
+  EXPECT_TRUE(check_bilateral_pairs(two_pairs, 15.0).empty());
+  EXPECT_FALSE(bilateral_tolerance_mm("nipple_", 15.0).has_value());
+  EXPECT_FALSE(bilateral_tolerance_mm("pectoral_insertion_", 15.0).has_value());
+  EXPECT_DOUBLE_EQ(bilateral_tolerance_mm("acromion_", 30.0)->x(), 2.0 * bilateral_tolerance_mm("acromion_", 15.0)->x());
+}
+
+}  // namespace
+}  // namespace breastfit::fit
