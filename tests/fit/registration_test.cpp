@@ -2,13 +2,19 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <string>
+#include <vector>
+
 #include "breastfit/core/errors.h"
 #include "breastfit/core/rng.h"
 #include "breastfit/core/so3.h"
 #include "breastfit/fit/initialization.h"
 #include "breastfit/fit/problem.h"
+#include "breastfit/fit/sliding_landmarks.h"
 #include "breastfit/model/param_layout.h"
 #include "breastfit/model/pose_evaluator.h"
+#include "fit/synth_anatomy.h"
 #include "support/toy_model.h"
 
 namespace breastfit::fit {
@@ -215,6 +221,49 @@ TEST(Registration, RejectsUnknownOrDuplicateLandmarks) {
   EXPECT_THROW(match_landmarks(m, {{"belly_button", Vec3::Zero()}}), InvalidInput);
   EXPECT_THROW(match_landmarks(m, {{"nipple_R", Vec3::Zero()}, {"nipple_R", Vec3::Ones()}}), InvalidInput);
   EXPECT_THROW(match_landmarks(m, {{"nipple_R", Vec3(NAN, 0, 0)}}), InvalidInput);
+}
+
+}  // namespace
+}  // namespace breastfit::fit
+
+namespace breastfit::fit {
+namespace {
+
+// Arms on boards and no landmarks given: the acromia, the mid-axillary points and the pectoral
+// insertions are held where the sternum's proportions put them on the scan, and the fit ends
+// nearer their truth than without them (the template's skin follows the abducted arm).
+TEST(Registration, LandmarkFreeHoldsTheShouldersLandmarksWithTheArmsOnBoards) {
+  const synth::SynthCase& c = test_anatomy::synth_case(synth::PoseType::Supine);
+  const model::RiggedModel& m = *test::default_template();
+  const std::vector<std::string> shoulders = {"acromion_R", "acromion_L", "midaxillary_R",
+                                              "midaxillary_L", "pectoral_insertion_R", "pectoral_insertion_L"};
+  const auto error = [&](const FitResult& r) {
+    double sum = 0;
+    for (const auto& name : shoulders)
+      sum += (model_landmark_position(m, *m.landmark_index(name), r.model_vertices, r.params) -
+              test_anatomy::truth(c, name))
+                 .norm();
+    return sum / static_cast<double>(shoulders.size());
+  };
+  const auto held = [](const FitResult& r, const std::string& name) {
+    const auto& names = r.summary.anatomical_landmark_names;
+    return std::find(names.begin(), names.end(), name) != names.end();
+  };
+  FitOptions o;
+  ScanTarget scan(c.scan);
+  const FitResult with = register_template(m, scan, {}, o);
+  for (const auto& name : shoulders) EXPECT_TRUE(held(with, name)) << name;
+  o.anatomical_shoulders = false;
+  ScanTarget again(c.scan);
+  const FitResult without = register_template(m, again, {}, o);
+  for (const auto& name : shoulders) EXPECT_FALSE(held(without, name)) << name;
+  EXPECT_LT(error(with), error(without));
+  // Standing (arms hanging): the acromia and the mid-axillary points are left to the fit.
+  const synth::SynthCase& standing = test_anatomy::synth_case(synth::PoseType::Standing);
+  ScanTarget upright(standing.scan);
+  const FitResult hanging = register_template(m, upright, {}, FitOptions{});
+  for (const char* name : {"acromion_R", "acromion_L", "midaxillary_R", "midaxillary_L"})
+    EXPECT_FALSE(held(hanging, name)) << name;
 }
 
 }  // namespace

@@ -40,6 +40,34 @@ void expect_best_of_strip(const Points& V, const SternumFrame& f, const Vec3& fo
   }
 }
 
+TEST(ShoulderLandmarks, SternumFrameFromTheNotchXiphoidAndNipples) {
+  const synth::SynthCase& c = synth_case(synth::PoseType::Supine);
+  const Vec3 notch = truth(c, "sternal_notch"), xiphoid = truth(c, "xiphoid");
+  const Vec3 right = truth(c, "nipple_R"), left = truth(c, "nipple_L");
+  for (const char* side : {"R", "L"}) {
+    const SternumFrame expected = sternum_frame(c, side);
+    const auto f = fit::sternum_frame(notch, xiphoid, right, left, side[0]);
+    ASSERT_TRUE(f) << side;
+    EXPECT_TRUE(f->notch.isApprox(notch)) << side;
+    EXPECT_NEAR(f->length_mm, expected.length_mm, 1e-9) << side;
+    EXPECT_GT(f->up.dot(expected.up), 1 - 1e-9) << side;
+    // Orthogonal to the sternum and to the nipples' line: the level front of the truth's frame when
+    // the nipples are level.
+    EXPECT_NEAR(f->front.norm(), 1.0, 1e-9) << side;
+    EXPECT_NEAR(f->front.dot(f->up), 0.0, 1e-9) << side;
+    EXPECT_NEAR(f->front.dot(left - right), 0.0, 1e-9) << side;
+    EXPECT_GT(f->front.dot(expected.front), 0.95) << side;
+    EXPECT_GT(f->lateral.dot(expected.lateral), 0.95) << side;  // towards the side asked for
+  }
+  // The nipples swapped: still in front, the sides swapped with them.
+  const auto swapped = fit::sternum_frame(notch, xiphoid, left, right, 'L');
+  ASSERT_TRUE(swapped);
+  EXPECT_GT(swapped->front.dot(sternum_frame(c, "L").front), 0.95);
+  EXPECT_GT(swapped->lateral.dot(sternum_frame(c, "R").lateral), 0.95);
+  EXPECT_FALSE(fit::sternum_frame(notch, notch, right, left, 'R'));  // no sternum
+  EXPECT_FALSE(fit::sternum_frame(notch, xiphoid, right, right, 'R'));  // no line through the nipples
+}
+
 TEST(ShoulderLandmarks, MidaxillaryPointOnTheChestWallAtTheSternumsProportion) {
   const synth::SynthCase& c = synth_case(synth::PoseType::Supine);
   const ShoulderLandmarkOptions o;

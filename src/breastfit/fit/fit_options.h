@@ -168,6 +168,10 @@ struct FitOptions {
   /// When the sternal notch is not given: it is held, from the shape stage on, where the
   /// manubrium meets the neck on the scan's midline (jugular_notch.h), when the detector is sure.
   bool anatomical_notch = true;
+  /// Fewer than all the landmarks: after the shape stage the acromia, mid-axillary points (arms on boards) and pectoral
+  /// insertions not given are held for the refine stage where the scan shows them (shoulder_landmarks.h: the sternum's
+  /// proportions; arms hanging, the insertion at the anterior axillary fold: pectoral_insertion.h), when found.
+  bool anatomical_shoulders = true;
   double max_surface_mae_mm = 8.0;   ///< a final kept-correspondence MAE above this = not usable
   double min_kept_fraction = 0.25;   ///< fewer kept correspondences than this share = not usable
   /// Threads for the correspondence searches and the normal equations (0: all cores, or

@@ -88,6 +88,7 @@ const std::vector<Field<FitOptions>>& fields() {
       {"max_surface_mae_mm", &F::max_surface_mae_mm}, {"min_kept_fraction", &F::min_kept_fraction},
       {"orientation_min_margin", &F::orientation_min_margin}, {"anatomical_nipples", &F::anatomical_nipples},
       {"anatomical_lowest_breast", &F::anatomical_lowest_breast}, {"anatomical_notch", &F::anatomical_notch},
+      {"anatomical_shoulders", &F::anatomical_shoulders},
       {"threads", &F::threads}};
   return f;
 }

@@ -15,8 +15,10 @@
 #include "breastfit/fit/landmark_prediction.h"
 #include "breastfit/fit/midline_notch_check.h"
 #include "breastfit/fit/orientation_search.h"
+#include "breastfit/fit/pectoral_insertion.h"
 #include "breastfit/fit/stage_minimizer.h"
 #include "breastfit/fit/problem.h"
+#include "breastfit/fit/shoulder_landmarks.h"
 #include "breastfit/fit/sliding_landmarks.h"
 #include "breastfit/mesh/normals.h"
 #include "breastfit/mesh/landmark_names.h"
@@ -235,6 +237,66 @@ std::vector<LandmarkTarget> jugular_notch_targets(const model::RiggedModel& mode
   return out;
 }
 
+// A landmark's position: its target in `held` when there is one, else the posed model's.
+std::optional<Vec3> held_or_posed(const model::RiggedModel& model, const Points& V, const model::PoseParams& params,
+                                  const std::vector<LandmarkTarget>& held, const std::string& name) {
+  for (const auto& t : held)
+    if (t.name == name) return t.position;
+  const auto idx = model.landmark_index(name);
+  if (!idx) return std::nullopt;
+  return model_landmark_position(model, *idx, V, params);
+}
+
+// The pectoral insertion of a hanging arm on the scan: at the anterior axillary fold
+// (pectoral_insertion.h), moved along the arm to the sternum's proportion (shoulder_landmarks.h).
+std::optional<Vec3> hanging_insertion(const model::RiggedModel& model, const Points& V, const model::PoseParams& params,
+                                      const Points& S, const SternumFrame& frame, const Vec3& fitted,
+                                      const Vec3& nipple, char side) {
+  const auto arm = upper_arm_axis(model, V, params, std::string(1, side));
+  if (!arm) return std::nullopt;
+  const auto fold = pectoral_insertion_on_scan(S, fitted, *arm, frame.up, frame.front, nipple);
+  if (!fold) return std::nullopt;
+  if (const auto level = hanging_pectoral_insertion_on_scan(S, *fold, frame)) return level;
+  return fold;
+}
+
+// Targets for the acromia, the mid-axillary points and the pectoral insertions not in `held`, in
+// the sternum's frame of the held notch (the jugular notch on the scan) and the posed xiphoid:
+// arms on boards (not found hanging by the orientation search's `arm_pose`, and reaching out
+// sideways on the scan) the three by the sternum's proportions (shoulder_landmarks.h); arms
+// hanging the pectoral insertion at the anterior axillary fold.
+std::vector<LandmarkTarget> shoulder_targets(const model::RiggedModel& model, const Points& V,
+                                             const model::PoseParams& params, const ScanTarget& scan,
+                                             const std::vector<LandmarkTarget>& held, const std::string& arm_pose) {
+  std::vector<LandmarkTarget> out;
+  const auto notch = held_or_posed(model, V, params, held, "sternal_notch");
+  const auto xiphoid = held_or_posed(model, V, params, held, "xiphoid");
+  const auto right = held_or_posed(model, V, params, held, "nipple_R");
+  const auto left = held_or_posed(model, V, params, held, "nipple_L");
+  if (!notch || !xiphoid || !right || !left) return out;
+  const Points& S = scan.mesh().V;
+  for (const char side : {'R', 'L'}) {
+    const auto frame = sternum_frame(*notch, *xiphoid, *right, *left, side);
+    if (!frame) return out;
+    const bool abducted = arm_pose.rfind("arms hanging", 0) != 0 && arms_abducted_on_scan(S, *frame);
+    const bool hanging = !abducted && arm_pose.rfind("arms abducted", 0) != 0;
+    if (!abducted && !hanging) continue;  // the search and the scan disagree
+    for (const std::string kind : {"acromion_", "midaxillary_", "pectoral_insertion_"}) {
+      const std::string name = kind + side;
+      const auto idx = model.landmark_index(name);
+      if (!idx || is_given(held, name) || (hanging && kind != "pectoral_insertion_")) continue;
+      const Vec3 fitted = model_landmark_position(model, *idx, V, params);
+      const auto found = hanging                 ? hanging_insertion(model, V, params, S, *frame, fitted,
+                                                                     side == 'R' ? *right : *left, side)
+                         : kind == "acromion_"    ? acromion_on_scan(S, fitted, *frame)
+                         : kind == "midaxillary_" ? midaxillary_on_scan(S, fitted, *frame)
+                                                  : abducted_pectoral_insertion_on_scan(S, *frame);
+      if (found) out.push_back({name, *idx, *found, 1.0});
+    }
+  }
+  return out;
+}
+
 std::string termination_message(const FitSummary& s) {
   const std::string stage = s.stages.empty() ? std::string("-") : s.stages.back().name;
   const int n = static_cast<int>(s.iterations.size());
@@ -445,7 +507,8 @@ FitResult register_template(const model::RiggedModel& model, ScanTarget& scan, s
   const bool hold_folds = options.anatomical_lowest_breast &&
                           !(is_given(landmarks, "lowest_breast_R") && is_given(landmarks, "lowest_breast_L"));
   const bool hold_notch = options.anatomical_notch && !is_given(landmarks, "sternal_notch");
-  if (hold_nipples || hold_folds || hold_notch) {
+  const bool hold_shoulders = options.anatomical_shoulders && landmarks.size() < model.landmarks.size();
+  if (hold_nipples || hold_folds || hold_notch || hold_shoulders) {
     const auto coarse_end = stages.end() - 2;  // shape and refine follow
     const std::vector<StageOptions> coarse(stages.begin(), coarse_end);
     summary.termination = minimize_stages(*problem_ptr, coarse, params, summary, on_iteration);
@@ -462,7 +525,24 @@ FitResult register_template(const model::RiggedModel& model, ScanTarget& scan, s
       summary.anatomical_landmarks = static_cast<int>(held.size() - landmarks.size());
       for (size_t i = landmarks.size(); i < held.size(); ++i) summary.anatomical_landmark_names.push_back(held[i].name);
       problem_ptr = std::make_unique<Problem>(model, scan, options, held);
-      summary.termination = minimize_stages(*problem_ptr, {coarse_end, stages.end()}, params, summary, on_iteration);
+      if (hold_shoulders) {
+        // The shoulder's landmarks once the shape is fitted (from the posed model the sternum is
+        // too short and the mid-axillary points came out higher), held for the refine stage.
+        summary.termination = minimize_stages(*problem_ptr, {coarse_end, coarse_end + 1}, params, summary, on_iteration);
+        if (summary.termination != Termination::Aborted && summary.termination != Termination::NumericalFailure) {
+          problem_ptr->evaluator().set_params(params);
+          const size_t before = held.size();
+          for (auto& t : shoulder_targets(model, problem_ptr->evaluator().vertices(), params, scan, held,
+                                          summary.orientation.arm_pose))
+            held.push_back(t);
+          for (size_t i = before; i < held.size(); ++i) summary.anatomical_landmark_names.push_back(held[i].name);
+          summary.anatomical_landmarks = static_cast<int>(held.size() - landmarks.size());
+          problem_ptr = std::make_unique<Problem>(model, scan, options, held);
+          summary.termination = minimize_stages(*problem_ptr, {coarse_end + 1, stages.end()}, params, summary, on_iteration);
+        }
+      } else {
+        summary.termination = minimize_stages(*problem_ptr, {coarse_end, stages.end()}, params, summary, on_iteration);
+      }
     }
   } else {
     summary.termination = minimize_stages(*problem_ptr, stages, params, summary, on_iteration);

@@ -6,6 +6,24 @@
 
 namespace breastfit::fit {
 
+std::optional<SternumFrame> sternum_frame(const Vec3& notch, const Vec3& xiphoid, const Vec3& nipple_R,
+                                          const Vec3& nipple_L, char side) {
+  SternumFrame f;
+  f.notch = notch;
+  f.length_mm = (notch - xiphoid).norm();
+  if (!(f.length_mm > 0)) return std::nullopt;
+  f.up = (notch - xiphoid) / f.length_mm;
+  const Vec3 across = f.up.cross(nipple_L - nipple_R);
+  if (!(across.norm() > 0)) return std::nullopt;
+  f.front = across.normalized();
+  if ((0.5 * (nipple_L + nipple_R) - xiphoid).dot(f.front) < 0) f.front = -f.front;
+  f.lateral = f.up.cross(f.front);
+  if (f.lateral.dot(nipple_L - nipple_R) < 0) f.lateral = -f.lateral;  // towards the left
+  if (side == 'R') f.lateral = -f.lateral;
+  if (!f.front.allFinite() || !f.lateral.allFinite()) return std::nullopt;
+  return f;
+}
+
 SternumCoordinates sternum_coordinates(const SternumFrame& f, const Vec3& p) {
   const Vec3 d = p - f.notch;
   return {d.dot(f.up), d.dot(f.front), d.dot(f.lateral)};

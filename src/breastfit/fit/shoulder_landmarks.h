@@ -35,7 +35,8 @@
 /// Used by `breastfit landmarks` (pipeline/detect_landmarks.h) after the fit; the acromion and the
 /// mid-axillary point for arms on boards only (arms hanging the fitted points were no worse: the
 /// arm hangs against the side of the chest, and the shoulder is not abducted), the caller checking
-/// arms_abducted_on_scan. Not held in the fit (`register` is unchanged).
+/// arms_abducted_on_scan. The same detectors hold these landmarks, when not given, for the refine
+/// stage of `register` (fit/registration.h, FitOptions::anatomical_shoulders).
 #include <optional>
 
 #include "breastfit/core/types.h"
@@ -56,6 +57,12 @@ struct SternumFrame {
 struct SternumCoordinates {
   double height = 0, front = 0, lateral = 0;
 };
+
+/// The sternum's frame on one side ('R' or 'L') from the fitted notch, xiphoid and nipples: up
+/// along the sternum (xiphoid → notch), front orthogonal to it and to the line through the nipples
+/// (towards the nipples), lateral towards `side`; nullopt when degenerate.
+std::optional<SternumFrame> sternum_frame(const Vec3& notch, const Vec3& xiphoid, const Vec3& nipple_R,
+                                          const Vec3& nipple_L, char side);
 
 /// `p` in `frame`'s coordinates.
 SternumCoordinates sternum_coordinates(const SternumFrame& frame, const Vec3& p);

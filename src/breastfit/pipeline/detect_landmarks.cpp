@@ -40,17 +40,7 @@ std::optional<fit::SternumFrame> sternum_frame(const model::RiggedModel& model, 
   const auto notch = fitted_landmark(model, fit, "sternal_notch"), xiphoid = fitted_landmark(model, fit, "xiphoid");
   const auto right = fitted_landmark(model, fit, "nipple_R"), left = fitted_landmark(model, fit, "nipple_L");
   if (!notch || !xiphoid || !right || !left) return std::nullopt;
-  fit::SternumFrame f;
-  f.notch = *notch;
-  f.length_mm = (*notch - *xiphoid).norm();
-  f.up = (*notch - *xiphoid).normalized();
-  f.front = f.up.cross(*left - *right).normalized();
-  if ((0.5 * (*left + *right) - *xiphoid).dot(f.front) < 0) f.front = -f.front;
-  f.lateral = f.up.cross(f.front);
-  if (f.lateral.dot(*left - *right) < 0) f.lateral = -f.lateral;  // towards the left
-  if (side == "R") f.lateral = -f.lateral;
-  if (!f.front.allFinite() || !f.lateral.allFinite()) return std::nullopt;
-  return f;
+  return fit::sternum_frame(*notch, *xiphoid, *right, *left, side.at(0));
 }
 
 // The pectoral insertion refined on the scan by its definition (fit/pectoral_insertion.h): the front
@@ -140,9 +130,12 @@ DetectedLandmarks landmarks_on_scan(const model::RiggedModel& model, const std::
       out.landmarks.push_back(d);
       continue;
     }
+    // Held on the scan's anatomy in the fit: the nipples, the notch and the folds (the shoulder's
+    // landmarks held there are refined above, else written as fitted).
     const auto& held = r.fit.summary.anatomical_landmark_names;
-    const bool anatomical = std::find(held.begin(), held.end(), p.name) != held.end();
     const bool nipple = p.name == "nipple_R" || p.name == "nipple_L";
+    const bool anatomical = std::find(held.begin(), held.end(), p.name) != held.end() &&
+                            (nipple || p.name == "sternal_notch" || p.name.rfind("lowest_breast_", 0) == 0);
     if (nipple && anatomical)
       if (const auto apex = nipple_refined(model, r.fit, normals, p.name, scan)) d.position_mm = scan.closest(*apex).point;
     d.method = !anatomical                  ? "fitted template, snapped to the scan"
