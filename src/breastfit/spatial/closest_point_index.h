@@ -58,6 +58,9 @@ class ClosestPointIndex {
   Vec3 face_normal(Index face) const;
   /// Area-weighted vertex normal interpolated at a closest point (smooth normal).
   Vec3 smooth_normal(const ClosestPoint& cp) const;
+  /// The area-weighted unit vertex normals smooth_normal() interpolates (#V by 3; those of
+  /// mesh::vertex_normals(mesh()), kept by the index). Addition, backwards compatible.
+  const Points& vertex_normals() const;
   const TriangleMesh& mesh() const;
 
  private:
