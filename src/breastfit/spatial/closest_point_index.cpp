@@ -198,7 +198,10 @@ struct ClosestPointIndex::Impl {
       build_leaf_blocks_serial(prims);
       return;
     }
-    const std::vector<std::int32_t> leaves = leaf_nodes();
+    std::vector<std::int32_t> leaves;
+    leaves.reserve(nodes.size() / 2 + 1);
+    for (std::size_t i = 0; i < nodes.size(); ++i)
+      if (i != 1 && nodes[i].is_leaf()) leaves.push_back(static_cast<std::int32_t>(i));
     constexpr std::size_t kLeafChunk = 2048;
     // Distinct corners of a leaf's triangles in first-use order, their number returned.
     const Index* F = mesh.F.data();
@@ -239,15 +242,6 @@ struct ClosestPointIndex::Impl {
     });
   }
 
-  /// The leaf nodes' indices in node order (node 1 is padding).
-  std::vector<std::int32_t> leaf_nodes() const {
-    std::vector<std::int32_t> leaves;
-    leaves.reserve(nodes.size() / 2 + 1);
-    for (std::size_t i = 0; i < nodes.size(); ++i)
-      if (i != 1 && nodes[i].is_leaf()) leaves.push_back(static_cast<std::int32_t>(i));
-    return leaves;
-  }
-
   void build_leaf_blocks_serial(const std::vector<std::uint32_t>& prims) {
     // Upper bound: every leaf full with 3 distinct corners per triangle. The buffer is not
     // initialised, so this only claims address space; lines are written (and paged in) once,
@@ -263,35 +257,10 @@ struct ClosestPointIndex::Impl {
     // v in the current leaf's block (leaf numbers start at 1, so 0 is "not seen").
     static_assert(3 * kMaxLeafSize <= 16, "corner slots must fit in 4 bits");
     std::vector<std::uint32_t> seen(static_cast<std::size_t>(mesh.num_vertices()), 0);
-    // In Morton order a leaf's faces and corners lie anywhere in the mesh's arrays (a cache miss
-    // each): the faces' rows and flags are fetched kAhead leaves ahead, their corners and stamps
-    // kAhead / 2 leaves ahead (by then the rows are in the cache), so the misses overlap.
-    constexpr std::size_t kAhead = 8;
-    const std::vector<std::int32_t> leaves = leaf_nodes();
-    const double* V = mesh.V.data();
-    auto prefetch_faces = [&](std::size_t l) {
-      const detail::BvhNode& n = nodes[static_cast<std::size_t>(leaves[l])];
-      for (int t = 0; t < n.count; ++t) {
-        const std::uint32_t f = prims[static_cast<std::size_t>(n.first + t)];
-        __builtin_prefetch(F + 3 * static_cast<std::ptrdiff_t>(f));
-        __builtin_prefetch(face_flags.data() + f);
-      }
-    };
-    auto prefetch_corners = [&](std::size_t l) {
-      const detail::BvhNode& n = nodes[static_cast<std::size_t>(leaves[l])];
-      for (int t = 0; t < n.count; ++t) {
-        const Index* tri = F + 3 * static_cast<std::ptrdiff_t>(prims[static_cast<std::size_t>(n.first + t)]);
-        for (int k = 0; k < 3; ++k) {
-          __builtin_prefetch(V + 3 * static_cast<std::ptrdiff_t>(tri[k]));
-          __builtin_prefetch(seen.data() + tri[k]);
-        }
-      }
-    };
     std::uint32_t leaf_number = 0;
-    for (std::size_t l = 0; l < leaves.size(); ++l) {
-      if (l + kAhead < leaves.size()) prefetch_faces(l + kAhead);
-      if (l + kAhead / 2 < leaves.size()) prefetch_corners(l + kAhead / 2);
-      detail::BvhNode& n = nodes[static_cast<std::size_t>(leaves[l])];
+    for (std::size_t i = 0; i < nodes.size(); ++i) {
+      detail::BvhNode& n = nodes[i];
+      if (i == 1 || !n.is_leaf()) continue;  // padding, inner node
       if (++leaf_number >= (1u << 28)) {  // stamps would overflow: start over
         std::fill(seen.begin(), seen.end(), 0u);
         leaf_number = 1;
