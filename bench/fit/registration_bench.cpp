@@ -1,5 +1,6 @@
 // Benchmarks of the registration's parts and of a whole fit, on a synthetic case made from the
-// shipped default template (no external data): scan index build, correspondences, normal
+// shipped default template (no external data): scan index build, correspondences, the arm search
+// of the initialisation, normal
 // equations assembly, one LM iteration, the surface-detail layer, and the full registration (what report.json's time_s
 // measures); the parallel parts with 1 and 2 threads (the last argument).
 #include <benchmark/benchmark.h>
@@ -80,12 +81,26 @@ void BM_Correspondences(benchmark::State& state) {
   const fit::FitOptions options = with_threads(f.options, state.range(1));
   const auto problem_ptr = f.problem(options);
   fit::Problem& problem = *problem_ptr;
-  for (auto _ : state) problem.update_correspondences(20.0, 1, state.range(0) != 0);
+  for (auto _ : state) {
+    problem.clear_correspondences();  // else the memo keeps the pairs of the same pose
+    problem.update_correspondences(20.0, 1, state.range(0) != 0);
+  }
   state.counters["model_vertices"] = f.model.num_vertices();
   state.SetLabel(std::string(state.range(0) ? "model->scan + scan->model" : "model->scan") + ", " +
                  std::to_string(state.range(1)) + " threads");
 }
 BENCHMARK(BM_Correspondences)->Args({0, 1})->Args({1, 1})->Args({0, 2})->Args({1, 2})->Unit(benchmark::kMillisecond);
+
+// The arms' angle search of the initialisation (28 posed arms scored against the scan), with
+// `threads` threads.
+void BM_ArmSearch(benchmark::State& state) {
+  auto& f = fixture();
+  for (auto _ : state) {
+    model::PoseParams params = f.start;
+    benchmark::DoNotOptimize(fit::initialize_arms(f.model, *f.scan, params, false, static_cast<int>(state.range(0))));
+  }
+}
+BENCHMARK(BM_ArmSearch)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
 
 void BM_NormalEquationsAssembly(benchmark::State& state) {
   auto& f = fixture();

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -10,6 +11,7 @@
 
 #include "breastfit/core/errors.h"
 #include "breastfit/core/rng.h"
+#include "breastfit/mesh/normals.h"
 #include "breastfit/spatial/point_triangle.h"
 #include "spatial/spatial_test_meshes.h"
 
@@ -273,6 +275,44 @@ TEST(ClosestPointIndex, HintsAndBatchGiveIdenticalResults) {
     }
   }
   EXPECT_TRUE(index.closest_batch(Points(0, 3)).empty());
+}
+
+TEST(ClosestPointIndex, QueryOrderIsAPermutationAlongAZCurve) {
+  // Points on a 16×16 grid in the plane z = 0, given row by row: the Z curve visits each 2×2
+  // block of cells before the next, so consecutive queries are neighbours far more often.
+  Points Q(256, 3);
+  for (int r = 0; r < 256; ++r) Q.row(r) = Vec3(r % 16, r / 16, 0.0).transpose();
+  const std::vector<std::uint32_t> order = query_order(Q);
+  ASSERT_EQ(order.size(), 256u);
+  std::vector<int> seen(256, 0);
+  for (const std::uint32_t i : order) ++seen[i];
+  EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), 256);
+  EXPECT_EQ(order[0], 0u);  // the low corner first
+  EXPECT_EQ(order[1], 1u);  // then its neighbour along x (bit 0 of the code)
+  EXPECT_EQ(order[2], 16u);  // then the one above it
+  // Each run of 16 consecutive queries spans a small block (row by row: a whole row, 15 wide).
+  double span = 0;
+  for (std::size_t b = 0; b < order.size(); b += 16) {
+    Eigen::RowVector3d lo = Q.row(order[b]), hi = lo;
+    for (std::size_t k = b; k < b + 16; ++k) {
+      lo = lo.cwiseMin(Q.row(order[k]));
+      hi = hi.cwiseMax(Q.row(order[k]));
+    }
+    span += (hi - lo).norm() / 16.0;
+  }
+  EXPECT_LT(span, 7.5) << "mean diagonal of 16 consecutive queries";
+  // Equal points keep their row order; empty and single inputs; a non-finite row is refused.
+  Points same = Points::Constant(3, 3, 2.0);
+  EXPECT_EQ(query_order(same), (std::vector<std::uint32_t>{0, 1, 2}));
+  EXPECT_TRUE(query_order(Points(0, 3)).empty());
+  Q(7, 1) = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(query_order(Q), InvalidInput);
+}
+
+TEST(ClosestPointIndex, KeepsTheVertexNormalsOfItsMesh) {
+  const TriangleMesh m = meshes::noisy_sheet(30, 10.0, 0.4, 0.1, 21);
+  const ClosestPointIndex index(m, 2);
+  EXPECT_EQ(index.vertex_normals(), mesh::vertex_normals(m));
 }
 
 TEST(ClosestPointIndex, SmoothAndFaceNormalsOnASphere) {

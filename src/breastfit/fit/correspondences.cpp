@@ -65,41 +65,63 @@ std::vector<Correspondence> find_correspondences(const Points& V, const Points& 
   if (hints && static_cast<Index>(hints->size()) != V.rows()) hints->assign(V.rows(), -1);
   const double cos_limit = std::cos(o.max_normal_angle_deg * M_PI / 180.0);
   const Index candidates = V.rows() > 0 ? (V.rows() - 1) / stride + 1 : 0;  // vertices 0, stride, 2·stride, …
-  std::vector<ChunkResult<Correspondence>> chunks(static_cast<size_t>(num_chunks(candidates, kQueryChunk)));
-  for_each_chunk(candidates, kQueryChunk, threads, [&](Index chunk, Index begin, Index end) {
-    auto& out = chunks[static_cast<size_t>(chunk)].pairs;
-    CorrespondenceStats& st = chunks[static_cast<size_t>(chunk)].stats;
-    out.reserve(static_cast<size_t>(end - begin));
-    for (Index k = begin; k < end; ++k) {
+  // The searches run along a Morton curve over the candidates (nearby queries one after another
+  // find the scan index's nodes in the cache), each candidate's outcome in its own slot; the pairs
+  // are then gathered in vertex order (the same pairs and counts as searching in vertex order).
+  Points Q(candidates, 3);
+  for (Index k = 0; k < candidates; ++k) Q.row(k) = V.row(k * stride);
+  const std::vector<std::uint32_t> order = spatial::query_order(Q);
+  enum class Outcome : std::uint8_t { Kept, Distance, Boundary, Normal };
+  std::vector<Outcome> outcome(static_cast<size_t>(candidates));
+  std::vector<Correspondence> found(static_cast<size_t>(candidates));
+  for_each_chunk(candidates, kQueryChunk, threads, [&](Index, Index begin, Index end) {
+    for (Index j = begin; j < end; ++j) {
+      const Index k = static_cast<Index>(order[static_cast<size_t>(j)]);
       const Index i = k * stride;
-      ++st.candidates;
-      const Vec3 q = V.row(i).transpose();
+      Outcome& out = outcome[static_cast<size_t>(k)];
+      const Vec3 q = Q.row(k).transpose();
       const auto m = scan.match(q, max_distance_mm, hints ? &(*hints)[i] : nullptr);
       if (!m) {
-        ++st.rejected_distance;
+        out = Outcome::Distance;
         continue;
       }
       if (o.reject_boundary && m->on_boundary) {
-        ++st.rejected_boundary;
+        out = Outcome::Boundary;
         continue;
       }
       const Vec3 n = N.row(i).transpose();
       if (n.dot(m->normal) < cos_limit) {
-        ++st.rejected_normal;
+        out = Outcome::Normal;
         continue;
       }
-      Correspondence c;
+      Correspondence& c = found[static_cast<size_t>(k)];
       c.vertex = i;
       c.target = m->point;
       c.normal = m->normal;
       const double r = std::sqrt((1.0 - o.point_to_point_weight) * std::pow(c.normal.dot(q - c.target), 2) +
                                  o.point_to_point_weight * (q - c.target).squaredNorm());
       c.weight = robust_weight(o.kernel, r, o.kernel_scale_mm);
-      out.push_back(c);
-      ++st.kept;
+      out = Outcome::Kept;
     }
   });
-  return concatenate(chunks, max_distance_mm, stats);
+  CorrespondenceStats st;
+  st.max_distance_mm = max_distance_mm;
+  st.candidates = static_cast<int>(candidates);
+  std::vector<Correspondence> pairs;
+  pairs.reserve(static_cast<size_t>(candidates));
+  for (Index k = 0; k < candidates; ++k) {
+    switch (outcome[static_cast<size_t>(k)]) {
+      case Outcome::Kept:
+        pairs.push_back(found[static_cast<size_t>(k)]);
+        ++st.kept;
+        break;
+      case Outcome::Distance: ++st.rejected_distance; break;
+      case Outcome::Boundary: ++st.rejected_boundary; break;
+      case Outcome::Normal: ++st.rejected_normal; break;
+    }
+  }
+  if (stats) *stats = st;
+  return pairs;
 }
 
 std::vector<ReverseCorrespondence> find_reverse_correspondences(const Points& V, const Triangles& F,

@@ -139,28 +139,37 @@ std::array<double, 2> initialize_arms(const model::RiggedModel& model, const Sca
     std::vector<Quat> rotations;
     for (int deg : angles_deg)
       rotations.push_back(Quat(Eigen::AngleAxisd(sign * deg * M_PI / 180.0, Vec3::UnitY())) * base);
-    // Every angle scored on its own (in parallel), the best chosen in order.
+    // Every angle scored on its own, the best chosen in order. The angles run in chunks (in
+    // parallel) of kAnglesPerChunk: one pose evaluator per chunk (its construction costs more
+    // than posing), and each search warm-started from the vertex's face at the chunk's previous
+    // angle (the same answers; only faster).
+    constexpr Index kAnglesPerChunk = 7;
     std::vector<double> scores(rotations.size(), 0.0);
-    for_each_chunk(static_cast<Index>(rotations.size()), 1, threads, [&](Index a, Index, Index) {
+    for_each_chunk(static_cast<Index>(rotations.size()), kAnglesPerChunk, threads, [&](Index, Index begin, Index end) {
+      model::PoseEvaluator evaluator(model);
       model::PoseParams trial = params;
-      trial.bones[*bone].rotation = rotations[static_cast<size_t>(a)];
-      const Points V = model::pose_vertices(model, trial);
-      double score = 0;
-      for (size_t k = 0; k < arm.size(); k += 2) {
-        const auto m = scan.match(V.row(arm[k]).transpose(), kMissMm);
-        score += m ? std::sqrt(m->sq_dist) : kMissMm;
-      }
-      if (!zone.empty()) {
-        score /= static_cast<double>((arm.size() + 1) / 2);
-        double reverse = 0;
-        for (const Vec3& z : zone) {
-          double nearest = kMissMm * kMissMm;
-          for (size_t k = 0; k < arm.size(); k += 2) nearest = std::min(nearest, (V.row(arm[k]).transpose() - z).squaredNorm());
-          reverse += std::sqrt(nearest);
+      std::vector<Index> hints(arm.size(), -1);
+      for (Index a = begin; a < end; ++a) {
+        trial.bones[*bone].rotation = rotations[static_cast<size_t>(a)];
+        evaluator.set_params(trial);
+        const Points& V = evaluator.vertices();
+        double score = 0;
+        for (size_t k = 0; k < arm.size(); k += 2) {
+          const auto m = scan.match(V.row(arm[k]).transpose(), kMissMm, &hints[k]);
+          score += m ? std::sqrt(m->sq_dist) : kMissMm;
         }
-        score += reverse / static_cast<double>(zone.size());
+        if (!zone.empty()) {
+          score /= static_cast<double>((arm.size() + 1) / 2);
+          double reverse = 0;
+          for (const Vec3& z : zone) {
+            double nearest = kMissMm * kMissMm;
+            for (size_t k = 0; k < arm.size(); k += 2) nearest = std::min(nearest, (V.row(arm[k]).transpose() - z).squaredNorm());
+            reverse += std::sqrt(nearest);
+          }
+          score += reverse / static_cast<double>(zone.size());
+        }
+        scores[static_cast<size_t>(a)] = score;
       }
-      scores[static_cast<size_t>(a)] = score;
     });
     double best_score = std::numeric_limits<double>::infinity();
     Quat best = base;

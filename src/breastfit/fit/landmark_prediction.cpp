@@ -79,6 +79,8 @@ Vec3 predict_left_out_relinearized(Problem& problem, const model::PoseParams& pa
     problem.update_correspondences(relinearization.max_distance_mm, 1, relinearization.with_reverse);
     problem.update_terms(relinearization.robust_landmarks);
   };
+  // The pairs at `params` (kept: found again at the end, they would be the same).
+  Problem::CorrespondenceState at_params = problem.correspondence_state();
   model::PoseParams at = params;
   ev.set_params(at);
   for (int k = 0; k < steps; ++k) {
@@ -93,7 +95,8 @@ Vec3 predict_left_out_relinearized(Problem& problem, const model::PoseParams& pa
   ev.set_params(at);
   const Vec3 out = model_landmark_position(ev.model(), problem.landmarks()[i].model_landmark, ev.vertices(), at);
   ev.set_params(params);
-  recompute();
+  problem.restore_correspondences(std::move(at_params));
+  recompute();  // searches only when the kept pairs were not those at `params` with these arguments
   return out;
 }
 

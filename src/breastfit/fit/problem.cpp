@@ -22,32 +22,33 @@ Problem::Problem(const model::RiggedModel& model, ScanTarget& scan, const FitOpt
 Problem::~Problem() = default;
 
 TermContext Problem::context() const {
-  return {ev_, pairs_, reverse_pairs_, landmarks_, options_, robust_landmarks_};
+  return {ev_, found_.pairs, found_.reverse_pairs, landmarks_, options_, robust_landmarks_};
 }
 
 void Problem::update_correspondences(double max_dist, int stride, bool with_reverse) {
   const double sign = scan_.normal_sign();
-  if (pairs_key_ && pairs_key_->max_distance_mm == max_dist && pairs_key_->stride == stride &&
-      pairs_key_->with_reverse == with_reverse && pairs_key_->normal_sign == sign &&
-      pairs_key_->vertices == ev_.vertices())
+  const auto& key = found_.key;
+  if (key && key->max_distance_mm == max_dist && key->stride == stride && key->with_reverse == with_reverse &&
+      key->normal_sign == sign && key->vertices == ev_.vertices())
     return;
-  pairs_key_ = PairsKey{ev_.vertices(), max_dist, sign, stride, with_reverse};
+  found_.key = CorrespondenceState::Key{ev_.vertices(), max_dist, sign, stride, with_reverse};
   const Points N = mesh::vertex_normals(ev_.vertices(), model_.rest.F);
-  pairs_ = find_correspondences(ev_.vertices(), N, scan_, options_.correspondences, max_dist, stride, &stats_,
-                                &hints_, options_.threads);
-  reverse_pairs_.clear();
-  reverse_stats_ = CorrespondenceStats{};
+  found_.pairs = find_correspondences(ev_.vertices(), N, scan_, options_.correspondences, max_dist, stride,
+                                      &found_.stats, &found_.hints, options_.threads);
+  found_.reverse_pairs.clear();
+  found_.reverse_stats = CorrespondenceStats{};
   if (with_reverse)
-    reverse_pairs_ = find_reverse_correspondences(ev_.vertices(), model_.rest.F, scan_, options_.correspondences,
-                                                  max_dist, &reverse_stats_, &reverse_hints_, options_.threads);
+    found_.reverse_pairs =
+        find_reverse_correspondences(ev_.vertices(), model_.rest.F, scan_, options_.correspondences, max_dist,
+                                     &found_.reverse_stats, &found_.reverse_hints, options_.threads);
 }
 
 void Problem::clear_correspondences() {
-  pairs_key_.reset();
-  pairs_.clear();
-  reverse_pairs_.clear();
-  stats_ = CorrespondenceStats{};
-  reverse_stats_ = CorrespondenceStats{};
+  found_.key.reset();
+  found_.pairs.clear();
+  found_.reverse_pairs.clear();
+  found_.stats = CorrespondenceStats{};
+  found_.reverse_stats = CorrespondenceStats{};
 }
 
 void Problem::update_terms(bool robust_landmarks) {
@@ -84,7 +85,7 @@ double Problem::evaluate_landmark(size_t i, NormalEquations* eq) const {
   std::vector<LandmarkTarget> one = landmarks_;  // the others at weight 0: the terms keep their per-landmark state
   for (size_t k = 0; k < one.size(); ++k)
     if (k != i) one[k].weight = 0.0;
-  const TermContext ctx{ev_, pairs_, reverse_pairs_, one, options_, robust_landmarks_};
+  const TermContext ctx{ev_, found_.pairs, found_.reverse_pairs, one, options_, robust_landmarks_};
   double cost = 0.0;
   for (const auto& t : terms_)
     if (t.name == "landmarks" || t.name == "sliding_landmarks") cost += t.term->evaluate(ctx, t.weight, eq);
@@ -105,10 +106,11 @@ void Problem::orient_scan_normals(double max_dist) {
 }
 
 double Problem::kept_mae_mm() const {
-  if (pairs_.empty()) return std::numeric_limits<double>::infinity();
+  const auto& pairs = found_.pairs;
+  if (pairs.empty()) return std::numeric_limits<double>::infinity();
   double sum = 0;
-  for (const auto& c : pairs_) sum += std::abs(c.normal.dot(ev_.vertices().row(c.vertex).transpose() - c.target));
-  return sum / pairs_.size();
+  for (const auto& c : pairs) sum += std::abs(c.normal.dot(ev_.vertices().row(c.vertex).transpose() - c.target));
+  return sum / pairs.size();
 }
 
 }  // namespace breastfit::fit

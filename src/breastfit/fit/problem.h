@@ -34,7 +34,7 @@ class Problem {
   /// would be the same: e.g. the final state after the landmark predictions).
   void update_correspondences(double max_distance_mm, int stride, bool with_reverse);
   /// The warm starts of the model → scan searches (per vertex; the last face found, or −1).
-  const std::vector<Index>& correspondence_hints() const { return hints_; }
+  const std::vector<Index>& correspondence_hints() const { return found_.hints; }
   /// Drops all correspondences (stages that use landmarks and priors only).
   void clear_correspondences();
   /// Lets every term re-choose what it holds fixed (EnergyTerm::update) at the current pose;
@@ -53,10 +53,32 @@ class Problem {
   /// Flips the scan's normal sign when most of them disagree with the posed template's normals.
   void orient_scan_normals(double max_distance_mm);
 
-  const std::vector<Correspondence>& pairs() const { return pairs_; }
-  const std::vector<ReverseCorrespondence>& reverse_pairs() const { return reverse_pairs_; }
-  const CorrespondenceStats& stats() const { return stats_; }
-  const CorrespondenceStats& reverse_stats() const { return reverse_stats_; }
+  const std::vector<Correspondence>& pairs() const { return found_.pairs; }
+  const std::vector<ReverseCorrespondence>& reverse_pairs() const { return found_.reverse_pairs; }
+  const CorrespondenceStats& stats() const { return found_.stats; }
+  const CorrespondenceStats& reverse_stats() const { return found_.reverse_stats; }
+
+  /// What update_correspondences() chose last: the pairs both ways, their counts, the searches'
+  /// warm starts and what they were found for.
+  struct CorrespondenceState {
+    std::vector<Correspondence> pairs;
+    std::vector<ReverseCorrespondence> reverse_pairs;
+    CorrespondenceStats stats, reverse_stats;
+    std::vector<Index> hints, reverse_hints;  // warm starts of the closest-point searches
+    struct Key {  // the posed vertices and arguments of the search (empty: none)
+      Points vertices;
+      double max_distance_mm = 0, normal_sign = 0;
+      int stride = 0;
+      bool with_reverse = false;
+    };
+    std::optional<Key> key;
+  };
+  /// The current state, to be put back with restore_correspondences() after a detour through
+  /// other poses (a copy: the caller keeps it).
+  const CorrespondenceState& correspondence_state() const { return found_; }
+  /// Puts back a saved state: a following update_correspondences() at the pose and arguments it
+  /// was found for keeps it instead of searching again (the same pairs it would find).
+  void restore_correspondences(CorrespondenceState state) { found_ = std::move(state); }
   /// Mean |point-to-plane distance| over the current pairs (∞ when none).
   double kept_mae_mm() const;
 
@@ -75,18 +97,7 @@ class Problem {
   std::vector<LandmarkTarget> landmarks_;
   std::vector<ActiveTerm> terms_;  // the enabled terms, in the table's order
   model::PoseEvaluator ev_;
-  std::vector<Correspondence> pairs_;
-  std::vector<ReverseCorrespondence> reverse_pairs_;
-  CorrespondenceStats stats_, reverse_stats_;
-  std::vector<Index> hints_, reverse_hints_;  // warm starts of the closest-point searches
-  // What the current pairs were found for (update_correspondences' memo; empty: none).
-  struct PairsKey {
-    Points vertices;
-    double max_distance_mm = 0, normal_sign = 0;
-    int stride = 0;
-    bool with_reverse = false;
-  };
-  std::optional<PairsKey> pairs_key_;
+  CorrespondenceState found_;  // its key is update_correspondences' memo
 };
 
 }  // namespace breastfit::fit

@@ -388,7 +388,7 @@ std::vector<std::optional<AnatomyCheck>> check_anatomy(const model::RiggedModel&
     const LandmarkTarget& t = given[i];
     const Vec3 near = i < predicted.size() ? predicted[i] : model_landmark_position(model, t.model_landmark, V, params);
     if (t.name == "nipple_R" || t.name == "nipple_L") {
-      if (scan_N.rows() == 0) scan_N = scan.normal_sign() * mesh::vertex_normals(scan.mesh());
+      if (scan_N.rows() == 0) scan_N = scan.normal_sign() * scan.vertex_normals();
       if (const auto tip = breast_tip_on_scan(scan.mesh().V, scan.mesh().V, scan_N, near))
         out[i] = AnatomyCheck{(*tip - t.position).norm(), options.nipple_tip_check_mm, "the breast's tip on the scan"};
     } else if (t.name == "sternal_notch" && axes) {

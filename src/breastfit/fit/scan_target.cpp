@@ -48,6 +48,8 @@ ScanTarget::ScanTarget(ScanTarget&&) noexcept = default;
 
 const TriangleMesh& ScanTarget::mesh() const { return index_->mesh(); }
 
+const Points& ScanTarget::vertex_normals() const { return index_->vertex_normals(); }
+
 Points ScanTarget::sample_normals() const { return normal_sign_ * sample_normals_; }
 
 std::optional<ScanMatch> ScanTarget::match(const Vec3& q, double max_dist, Index* hint_face) const {

@@ -46,6 +46,9 @@ class ScanTarget {
 
   /// The scan as given (the index's copy: the target keeps no second one).
   const TriangleMesh& mesh() const;
+  /// The scan's area-weighted unit vertex normals as given (mesh::vertex_normals(mesh()), not
+  /// multiplied by normal_sign()): the index's, computed once with it.
+  const Points& vertex_normals() const;
   /// Deterministic area-uniform samples (points and unit normals, oriented by normal_sign())
   /// of the scan, for the reverse term.
   const Points& sample_points() const { return samples_; }

@@ -505,7 +505,7 @@ std::vector<ClosestPoint> ClosestPointIndex::closest_batch(const Points& Q) cons
   std::vector<ClosestPoint> out(n);
   if (n == 0) return out;
   if (!Q.allFinite()) throw InvalidInput("ClosestPointIndex::closest_batch: non-finite query");
-  const std::vector<std::uint32_t> order = detail::morton_order(Q);
+  const std::vector<std::uint32_t> order = query_order(Q);
   Index hint = -1;
   for (const std::uint32_t i : order) {
     const double* q = Q.data() + 3 * static_cast<std::ptrdiff_t>(i);
@@ -547,5 +547,12 @@ Vec3 ClosestPointIndex::smooth_normal(const ClosestPoint& cp) const {
 }
 
 const TriangleMesh& ClosestPointIndex::mesh() const { return impl_->mesh; }
+
+const Points& ClosestPointIndex::vertex_normals() const { return impl_->vertex_normals; }
+
+std::vector<std::uint32_t> query_order(const Points& Q) {
+  if (!Q.allFinite()) throw InvalidInput("spatial::query_order: non-finite query");
+  return detail::morton_order(Q);
+}
 
 }  // namespace breastfit::spatial

@@ -1,5 +1,6 @@
 #pragma once
 /// \file Exact closest point on a triangle mesh (point-to-triangle, not nearest vertex).
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -58,11 +59,21 @@ class ClosestPointIndex {
   Vec3 face_normal(Index face) const;
   /// Area-weighted vertex normal interpolated at a closest point (smooth normal).
   Vec3 smooth_normal(const ClosestPoint& cp) const;
+  /// The area-weighted unit vertex normals smooth_normal() interpolates (#V by 3; those of
+  /// mesh::vertex_normals(mesh()), kept by the index). Addition, backwards compatible.
+  const Points& vertex_normals() const;
   const TriangleMesh& mesh() const;
 
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+/// Row indices of Q (#Q by 3, finite) in the order closest_batch() runs its queries: along a
+/// Morton (Z-order) curve over Q's bounds, ties by row. Callers running many queries of their own
+/// in this order find the index's nodes and leaves in the cache more often. Addition, backwards
+/// compatible.
+/// \throws InvalidInput when a row is not finite.
+std::vector<std::uint32_t> query_order(const Points& Q);
 
 }  // namespace breastfit::spatial
