@@ -127,7 +127,7 @@ RegisterResult register_prepared(const RegisterRequest& req, PreparedTarget& tar
     Timer own;
     switch (task) {
       case 0:
-        out.breasts = transfer::measure_breasts(model, out.fit.vertices);
+        out.breasts = transfer::measure_breasts(model, out.fit.vertices, {}, target.volumes.get());
         breasts_s = own.seconds();
         break;
       case 1: {
