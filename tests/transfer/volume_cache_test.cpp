@@ -39,10 +39,10 @@ TEST(VolumeCache, TopologyIsTheMeshsOwnAndIsReusedForTheSameTrianglesOnly) {
   const auto t = cache.topology(g);
   EXPECT_TRUE(same_lists(t->neighbours, mesh::vertex_neighbours(g)));
   EXPECT_TRUE(same_lists(t->faces, mesh::vertex_faces(g)));
-  EXPECT_EQ(cache.misses, 1);
+  EXPECT_EQ(cache.misses(), 1);
   g.V *= 1.5;  // other positions, the same triangles: the same topology
   EXPECT_EQ(cache.topology(g), t);
-  EXPECT_EQ(cache.hits, 1);
+  EXPECT_EQ(cache.hits(), 1);
   const TriangleMesh other = test::grid_mesh(5, 2.0);
   const auto u = cache.topology(other);
   EXPECT_NE(u, t);
@@ -75,13 +75,13 @@ TEST(VolumeCache, FillFactorisationIsReusedForAnEqualMatrixOnly) {
   EXPECT_LT((A * s->solve(b) - b).norm(), 1e-12);
   const Eigen::SparseMatrix<double> copy = A;
   EXPECT_EQ(cache.fill_solver(copy), s);
-  EXPECT_EQ(cache.hits, 1);
+  EXPECT_EQ(cache.hits(), 1);
   Eigen::SparseMatrix<double> changed = A;
   changed.coeffRef(3, 3) = 4.0;  // same pattern, another value: factorised again
   const auto t = cache.fill_solver(changed);
   EXPECT_NE(t, s);
   EXPECT_LT((changed * t->solve(b) - b).norm(), 1e-12);
-  EXPECT_EQ(cache.misses, 2);
+  EXPECT_EQ(cache.misses(), 2);
   EXPECT_EQ(cache.fill_solver(A), s);  // the first is still kept
 }
 
@@ -104,7 +104,7 @@ TEST(VolumeCache, CurveVolumesAreTheSameBitsWithACache) {
       EXPECT_EQ(curve_volume(g2, curve2, o, &cache).volume_ml, b.volume_ml) << round;
     }
   }
-  EXPECT_GT(cache.hits, 0);
+  EXPECT_GT(cache.hits(), 0);
 }
 
 TEST(VolumeCache, BreastVolumesOfTheTemplateAreTheSameBitsWithACache) {
@@ -120,7 +120,7 @@ TEST(VolumeCache, BreastVolumesOfTheTemplateAreTheSameBitsWithACache) {
     EXPECT_EQ(*cached.right.volume_ml, *fresh.right.volume_ml) << k;
     EXPECT_EQ(*cached.left.volume_ml, *fresh.left.volume_ml) << k;
   }
-  EXPECT_GT(cache.hits, 0);  // the template's own topology at least
+  EXPECT_GT(cache.hits(), 0);  // the template's own topology at least
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <Eigen/SparseCore>
 
 #include "breastfit/core/errors.h"
+#include "breastfit/core/task_queue.h"
 #include "breastfit/mesh/adjacency.h"
 #include "breastfit/mesh/graph.h"
 #include "breastfit/transfer/curve_region.h"
@@ -123,7 +124,7 @@ RegionVolume region_volume(const TriangleMesh& surface, const std::vector<Index>
 }
 
 BreastMeasurements measure_breasts(const model::RiggedModel& model, const Points& posed_mm, const VolumeOptions& options,
-                                   VolumeCache* cache) {
+                                   VolumeCache* cache, unsigned threads) {
   if (posed_mm.rows() != model.num_vertices())
     throw InvalidInput("measure_breasts: " + std::to_string(posed_mm.rows()) + " posed vertices for a model with " +
                        std::to_string(model.num_vertices()));
@@ -147,11 +148,14 @@ BreastMeasurements measure_breasts(const model::RiggedModel& model, const Points
   TriangleMesh skin;
   skin.V = posed_mm;
   skin.F = F;
-  for (int side = 0; side < 2; ++side) {
+  // The two sides are independent (each writes its own numbers and warnings, joined in order).
+  std::vector<std::string> side_warnings[2];
+  run_in_order(2, std::max(1u, threads), [&](std::size_t side) {
+    std::vector<std::string>& warnings = side_warnings[side];
     const std::string s = side == 0 ? "R" : "L";
     BreastSide& b = side == 0 ? m.right : m.left;
     const auto nipple = landmark("nipple_" + s);
-    if (!nipple) m.warnings.push_back("landmark nipple_" + s + " missing");
+    if (!nipple) warnings.push_back("landmark nipple_" + s + " missing");
     if (nipple && notch) b.notch_to_nipple_mm = (*nipple - *notch).norm();
 
     const model::Drawing* fold = nullptr;
@@ -170,7 +174,7 @@ BreastMeasurements measure_breasts(const model::RiggedModel& model, const Points
       b.imf_lowest_mm = lowest;
       if (nipple) b.nipple_to_imf_mm = (*nipple - lowest).norm();
     } else {
-      m.warnings.push_back("drawings imf_" + s + " and breast_contour_" + s + " missing");
+      warnings.push_back("drawings imf_" + s + " and breast_contour_" + s + " missing");
     }
 
     // Volume: the skin inside the breast contour against a chest wall spanning the contour
@@ -185,14 +189,15 @@ BreastMeasurements measure_breasts(const model::RiggedModel& model, const Points
         co.volume = options;
         co.target_edge_mm = 4.0;  // within 0.5 % of finer refinements (docs/TRANSFER.md), 4x fewer faces than 2 mm
         b.volume_ml = curve_volume(skin, curve, co, cache).volume_ml;
-        if (*b.volume_ml < 0) m.warnings.push_back("breast_" + s + " volume is negative (the skin lies under the chest-wall fill)");
+        if (*b.volume_ml < 0) warnings.push_back("breast_" + s + " volume is negative (the skin lies under the chest-wall fill)");
       } catch (const InvalidInput& e) {
-        m.warnings.push_back("breast_" + s + " volume not measured: " + e.what());
+        warnings.push_back("breast_" + s + " volume not measured: " + e.what());
       }
     } else {
-      m.warnings.push_back("drawing breast_contour_" + s + " missing: no volume");
+      warnings.push_back("drawing breast_contour_" + s + " missing: no volume");
     }
-  }
+  });
+  for (auto& w : side_warnings) m.warnings.insert(m.warnings.end(), w.begin(), w.end());
   const auto nr = landmark("nipple_R"), nl = landmark("nipple_L");
   if (nr && nl) m.inter_nipple_mm = (*nr - *nl).norm();
   m.volume_ratio = ratio(m.left.volume_ml, m.right.volume_ml);

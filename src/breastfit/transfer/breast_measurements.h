@@ -85,8 +85,10 @@ struct BreastMeasurements {
 /// \param cache     optional (volume_cache.h): kept across the measurements of one template (a
 ///                  session's re-fits) it spares the topology and the fills' factorisations
 ///                  (the same result)
+/// \param threads   up to 2: the two breasts measured at the same time (the same result)
 /// \throws InvalidInput when posed_mm does not match the model
 BreastMeasurements measure_breasts(const model::RiggedModel& model, const Points& posed_mm,
-                                   const VolumeOptions& options = {}, VolumeCache* cache = nullptr);
+                                   const VolumeOptions& options = {}, VolumeCache* cache = nullptr,
+                                   unsigned threads = 1);
 
 }  // namespace breastfit::transfer

@@ -54,39 +54,70 @@ VolumeCache::TopologyEntry& VolumeCache::entry_for(const TriangleMesh& mesh) {
   return topologies_.front();
 }
 
+int VolumeCache::hits() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return hits_;
+}
+
+int VolumeCache::misses() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return misses_;
+}
+
+// A lookup: the cached value under the lock; when missing it is computed without the lock (the
+// other breast's lookups go on meanwhile) and kept, unless another thread kept one first.
 std::shared_ptr<const MeshTopology> VolumeCache::topology(const TriangleMesh& mesh) {
-  TopologyEntry& e = entry_for(mesh);
-  if (e.topology) {
-    ++hits;
-    return e.topology;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (const auto t = entry_for(mesh).topology) {
+      ++hits_;
+      return t;
+    }
+    ++misses_;
   }
-  ++misses;
-  e.topology = computed_topology(mesh);
+  auto computed = computed_topology(mesh);
+  std::lock_guard<std::mutex> lock(mutex_);
+  TopologyEntry& e = entry_for(mesh);
+  if (!e.topology) e.topology = std::move(computed);
   return e.topology;
 }
 
 std::shared_ptr<const std::vector<std::vector<Index>>> VolumeCache::boundary_loops(const TriangleMesh& mesh) {
-  TopologyEntry& e = entry_for(mesh);
-  if (e.boundary) {
-    ++hits;
-    return e.boundary;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (const auto b = entry_for(mesh).boundary) {
+      ++hits_;
+      return b;
+    }
+    ++misses_;
   }
-  ++misses;
-  e.boundary = std::make_shared<const std::vector<std::vector<Index>>>(mesh::boundary_loops(mesh));
+  auto computed = std::make_shared<const std::vector<std::vector<Index>>>(mesh::boundary_loops(mesh));
+  std::lock_guard<std::mutex> lock(mutex_);
+  TopologyEntry& e = entry_for(mesh);
+  if (!e.boundary) e.boundary = std::move(computed);
   return e.boundary;
 }
 
 std::shared_ptr<const FillSolver> VolumeCache::fill_solver(const Eigen::SparseMatrix<double>& m) {
-  for (size_t i = 0; i < fills_.size(); ++i)
-    if (same_matrix(fills_[i].matrix, m)) {
-      ++hits;
-      return to_front(fills_, i).solver;
-    }
-  ++misses;
-  auto solver = std::make_shared<FillSolver>(m);
-  if (fills_.size() >= kFills) fills_.pop_back();
   Eigen::SparseMatrix<double> key = m;
   key.makeCompressed();
+  auto find = [&]() -> std::shared_ptr<const FillSolver> {
+    for (size_t i = 0; i < fills_.size(); ++i)
+      if (same_matrix(fills_[i].matrix, key)) return to_front(fills_, i).solver;
+    return nullptr;
+  };
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (auto s = find()) {
+      ++hits_;
+      return s;
+    }
+    ++misses_;
+  }
+  auto solver = std::make_shared<const FillSolver>(key);
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (auto s = find()) return s;
+  if (fills_.size() >= kFills) fills_.pop_back();
   fills_.insert(fills_.begin(), FillEntry{std::move(key), solver});
   return solver;
 }

@@ -7,9 +7,11 @@
 /// triangles never change, the refined patch and the membrane fill's matrix (a graph Laplacian:
 /// topology only) mostly do not. An entry is used only when its key equals the new input (the
 /// triangles and vertex count; the whole fill matrix), so the results are the same bits with or
-/// without a cache. Not thread-safe: one measurement at a time per cache.
+/// without a cache. Thread-safe (the two breasts may be measured at the same time; a lookup holds
+/// the cache while it computes what is missing).
 #include <cstddef>
 #include <memory>
+#include <mutex>
 #include <vector>
 
 #include <Eigen/SparseCholesky>
@@ -44,8 +46,8 @@ class VolumeCache {
   /// when it failed: check solver->info()).
   std::shared_ptr<const FillSolver> fill_solver(const Eigen::SparseMatrix<double>& m);
 
-  int hits = 0;    ///< lookups answered from the cache (all kinds)
-  int misses = 0;  ///< lookups computed
+  int hits() const;    ///< lookups answered from the cache (all kinds)
+  int misses() const;  ///< lookups computed
 
  private:
   struct TopologyEntry {
@@ -58,7 +60,9 @@ class VolumeCache {
     Eigen::SparseMatrix<double> matrix;
     std::shared_ptr<const FillSolver> solver;
   };
-  TopologyEntry& entry_for(const TriangleMesh& mesh);
+  TopologyEntry& entry_for(const TriangleMesh& mesh);  // with mutex_ held
+  mutable std::mutex mutex_;
+  int hits_ = 0, misses_ = 0;
   std::vector<TopologyEntry> topologies_;  ///< most recently used first
   std::vector<FillEntry> fills_;           ///< most recently used first
 };
