@@ -126,6 +126,44 @@ TEST(Registration, WarmRefitStartsFromTheGivenParametersAndRunsOnlyRefine) {
   EXPECT_THROW(refit_template(m, scan, lms, o, other), InvalidInput);
 }
 
+// A re-fit's landmark predictions run beside its final state and surface detail with 2 threads
+// (on a problem of their own), one after the other with 1: the same re-fit, bit for bit, with its
+// checks (predictions included) and warnings.
+TEST(Registration, WarmRefitIsTheSameWithOneAndTwoThreads) {
+  const test::ToyScanCase c(31, 0.4);
+  ScanTarget scan(c.mesh, 300);
+  FitOptions o;
+  o.nipple_tip_check_mm = 1e3;  // the toy's breasts have no tip to check (landmark_check_test)
+  o.threads = 1;
+  auto named = c.named_landmarks();
+  const FitResult full = register_template(c.m, scan, match_landmarks(c.m, named), o);
+  ASSERT_TRUE(full.summary.usable()) << full.summary.message;
+  named[1].second.x() += 10.0;  // the workstation's case: one landmark moved by 10 mm
+  const auto moved = match_landmarks(c.m, named);
+  const FitResult one = refit_template(c.m, scan, moved, o, full.params);
+  ASSERT_TRUE(one.summary.usable()) << one.summary.message;
+  ASSERT_EQ(one.summary.landmark_checks.size(), moved.size());
+  int predicted = 0;
+  for (const auto& check : one.summary.landmark_checks) predicted += check.predicted_tolerance_mm > 0;
+  EXPECT_EQ(predicted, static_cast<int>(moved.size()));  // the predictions ran
+  o.threads = 2;
+  const FitResult two = refit_template(c.m, scan, moved, o, full.params);
+  EXPECT_EQ(two.vertices, one.vertices);
+  EXPECT_EQ(two.detail_offsets, one.detail_offsets);
+  EXPECT_EQ(two.summary.final_energy.total(), one.summary.final_energy.total());
+  EXPECT_EQ(two.summary.iterations.size(), one.summary.iterations.size());
+  EXPECT_EQ(two.summary.warnings, one.summary.warnings);
+  ASSERT_EQ(two.summary.landmark_checks.size(), one.summary.landmark_checks.size());
+  for (size_t i = 0; i < one.summary.landmark_checks.size(); ++i) {
+    const auto &a = one.summary.landmark_checks[i], &b = two.summary.landmark_checks[i];
+    EXPECT_EQ(b.predicted_distance_mm, a.predicted_distance_mm) << a.name;
+    EXPECT_EQ(b.distance_mm, a.distance_mm) << a.name;
+    EXPECT_EQ(b.anatomy_distance_mm, a.anatomy_distance_mm) << a.name;
+    EXPECT_EQ(b.flagged, a.flagged) << a.name;
+    EXPECT_EQ(b.factor, a.factor) << a.name;
+  }
+}
+
 TEST(Registration, UmeyamaRecoversASimilarity) {
   Rng rng(5);
   Points src(6, 3);

@@ -6,6 +6,7 @@
 #include "breastfit/io/io.h"
 #include "breastfit/pipeline/fit_deviation.h"
 #include "breastfit/synth/synth_case.h"
+#include "breastfit/transfer/breast_measurements.h"
 #include "support/default_template.h"
 #include "support/test_paths.h"
 
@@ -79,6 +80,41 @@ TEST(ScanSession, FastRefitStaysAsCloseToTheColdFitAsTheWholeRefine) {
   EXPECT_LE(fast_cold.surface_median_mm, whole_cold.surface_median_mm + 0.3);
   EXPECT_LE(fast_cold.drawings_max_mm, whole_cold.drawings_max_mm + 1.0);
   EXPECT_LE(pipeline::fit_deviation(fast->result, full_refine->result).surface_median_mm, 0.5);
+}
+
+// A re-fit is the same with 1 and 2 threads (its landmark predictions beside its final state,
+// the two breasts' volumes side by side), and the session's breast-volume cache, warm from the
+// first fit, changes nothing: the volumes are those measured without a cache.
+TEST(ScanSession, RefitIsTheSameWithOneAndTwoThreads) {
+  fit::FitOptions one, two;
+  one.threads = 1;
+  two.threads = 2;
+  ScanSession s1("1", the_case().scan, "scan.ply", test::default_template(), one);
+  ScanSession s2("2", the_case().scan, "scan.ply", test::default_template(), two);
+  LandmarkSet moved = the_case().landmarks;
+  moved.points[2].position.y() += 10.0;
+  ASSERT_TRUE(s1.run_fit(the_case().landmarks, false)->result.usable());
+  ASSERT_TRUE(s2.run_fit(the_case().landmarks, false)->result.usable());
+  const auto a = s1.run_fit(moved, true);
+  const auto b = s2.run_fit(moved, true);
+  ASSERT_TRUE(a->warm && b->warm);
+  const pipeline::RegisterResult &ra = a->result, &rb = b->result;
+  EXPECT_EQ(rb.fit.vertices, ra.fit.vertices);
+  EXPECT_EQ(rb.warnings, ra.warnings);
+  ASSERT_TRUE(ra.breasts.right.volume_ml && rb.breasts.right.volume_ml && ra.breasts.left.volume_ml);
+  EXPECT_EQ(*rb.breasts.right.volume_ml, *ra.breasts.right.volume_ml);
+  EXPECT_EQ(*rb.breasts.left.volume_ml, *ra.breasts.left.volume_ml);
+  const transfer::BreastMeasurements uncached = transfer::measure_breasts(*test::default_template(), ra.fit.vertices);
+  EXPECT_EQ(uncached.right.volume_ml, ra.breasts.right.volume_ml);
+  EXPECT_EQ(uncached.left.volume_ml, ra.breasts.left.volume_ml);
+  ASSERT_EQ(rb.fit.summary.landmark_checks.size(), ra.fit.summary.landmark_checks.size());
+  for (size_t i = 0; i < ra.fit.summary.landmark_checks.size(); ++i)
+    EXPECT_EQ(rb.fit.summary.landmark_checks[i].predicted_distance_mm,
+              ra.fit.summary.landmark_checks[i].predicted_distance_mm) << i;
+  EXPECT_EQ(rb.surface.mae, ra.surface.mae);
+  ASSERT_EQ(rb.drawings_on_scan.size(), ra.drawings_on_scan.size());
+  for (size_t i = 0; i < ra.drawings_on_scan.size(); ++i)
+    EXPECT_EQ(rb.drawings_on_scan[i].points, ra.drawings_on_scan[i].points) << ra.drawings_on_scan[i].name;
 }
 
 TEST(ScanSession, OneFitAtATimeAndCancel) {

@@ -7,6 +7,7 @@
 #include <set>
 
 #include "breastfit/core/errors.h"
+#include "breastfit/core/task_queue.h"
 #include "breastfit/core/timer.h"
 #include "breastfit/fit/bilateral_check.h"
 #include "breastfit/fit/breast_fold.h"
@@ -15,6 +16,7 @@
 #include "breastfit/fit/landmark_prediction.h"
 #include "breastfit/fit/midline_notch_check.h"
 #include "breastfit/fit/orientation_search.h"
+#include "breastfit/fit/parallel_chunks.h"
 #include "breastfit/fit/pectoral_insertion.h"
 #include "breastfit/fit/stage_minimizer.h"
 #include "breastfit/fit/problem.h"
@@ -314,6 +316,10 @@ std::string termination_message(const FitSummary& s) {
 void finish_fit(const model::RiggedModel& model, ScanTarget& scan, Problem& problem, const model::PoseParams& params,
                 const std::vector<LandmarkTarget>& landmarks, const FitOptions& options, const PlacedCheck& placed,
                 FitResult& result);
+void finish_surface(const model::RiggedModel& model, ScanTarget& scan, Problem& problem, const model::PoseParams& params,
+                    const FitOptions& options, FitResult& result);
+void finish_checks(const model::RiggedModel& model, const std::vector<LandmarkTarget>& landmarks,
+                   const FitOptions& options, const PlacedCheck& placed, FitResult& result);
 
 // Where the scan's anatomy and the other landmarks put each of the first `given` landmarks of
 // `problem` (landmark_prediction.h), at the final correspondences (the anatomical targets held
@@ -576,9 +582,29 @@ FitResult refit_template(const model::RiggedModel& model, ScanTarget& scan, std:
   problem->evaluator().set_params(params);
   summary.timings.push_back({"initialization", phase.seconds()});
   summary.termination = minimize_stages(*problem, {warm.refine}, params, summary, on_iteration);
-  const PlacedCheck placed =
-      hold_off_misplaced(model, scan, problem, params, landmarks, warm, summary, on_iteration, false);
-  finish_fit(model, scan, *problem, params, landmarks, warm, placed, result);
+  // A re-fit's landmark check only reports (hold_off_misplaced without its refit): its
+  // predictions need the fitted parameters alone. With 2 threads they run on a problem of their
+  // own (the same pairs and terms at the same parameters) beside the final state and the surface
+  // detail, each of the two on one thread; with 1 thread one after the other. The same result.
+  PlacedCheck placed;
+  if (resolve_threads(options.threads) >= 2) {
+    warm.threads = 1;  // the problem's options: both tasks' searches on their own thread
+    const FitSummary before = summary;  // the predictions read it while the other task writes it
+    run_in_order(2, 2, [&](std::size_t task) {
+      if (task == 0) {
+        auto own = std::make_unique<Problem>(model, scan, warm, landmarks);
+        model::PoseParams at = params;
+        FitSummary read_only = before;
+        placed = hold_off_misplaced(model, scan, own, at, landmarks, warm, read_only, on_iteration, false);
+      } else {
+        finish_surface(model, scan, *problem, params, warm, result);
+      }
+    });
+  } else {
+    placed = hold_off_misplaced(model, scan, problem, params, landmarks, warm, summary, on_iteration, false);
+    finish_surface(model, scan, *problem, params, warm, result);
+  }
+  finish_checks(model, landmarks, warm, placed, result);
   summary.seconds = timer.seconds();
   return result;
 }
@@ -590,6 +616,13 @@ namespace {
 void finish_fit(const model::RiggedModel& model, ScanTarget& scan, Problem& problem, const model::PoseParams& params,
                 const std::vector<LandmarkTarget>& landmarks, const FitOptions& options, const PlacedCheck& placed,
                 FitResult& result) {
+  finish_surface(model, scan, problem, params, options, result);
+  finish_checks(model, landmarks, options, placed, result);
+}
+
+// finish_fit's first part: the final state at the final threshold, the verdict, the surface detail.
+void finish_surface(const model::RiggedModel& model, ScanTarget& scan, Problem& problem, const model::PoseParams& params,
+                    const FitOptions& options, FitResult& result) {
   FitSummary& summary = result.summary;
   Timer phase;
   problem.evaluator().set_params(params);
@@ -622,9 +655,15 @@ void finish_fit(const model::RiggedModel& model, ScanTarget& scan, Problem& prob
     summary.detail = {true, d.kept, d.mean_abs_mm, d.max_abs_mm};
     summary.timings.push_back({"surface_detail", phase.seconds()});
   }
+}
+
+// finish_fit's second part: the landmark checks and their warnings, on the final surface.
+void finish_checks(const model::RiggedModel& model, const std::vector<LandmarkTarget>& landmarks,
+                   const FitOptions& options, const PlacedCheck& placed, FitResult& result) {
+  FitSummary& summary = result.summary;
   // Checked on the final surface (detail included): what the user sees.
   summary.landmark_checks =
-      check_landmarks(model, result.vertices, result.model_vertices, params, landmarks, options, placed);
+      check_landmarks(model, result.vertices, result.model_vertices, result.params, landmarks, options, placed);
   for (const auto& c : summary.landmark_checks) {
     if (!c.flagged) continue;
     std::string why;

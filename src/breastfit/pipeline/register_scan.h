@@ -18,6 +18,7 @@
 #include "breastfit/pipeline/scan_input.h"
 #include "breastfit/transfer/breast_measurements.h"
 #include "breastfit/transfer/drawing_transfer.h"
+#include "breastfit/transfer/volume_cache.h"
 
 namespace breastfit::pipeline {
 
@@ -76,12 +77,15 @@ struct RegisterResult {
 RegisterResult register_scan(const RegisterRequest& request, const fit::IterationCallback& on_iteration = {});
 
 /// A scan prepared once for several registrations (the workstation: one scan, many fits): the
-/// scan in mm and its closest-point index.
+/// scan in mm and its closest-point index, and what the fits' breast volumes reuse.
 struct PreparedTarget {
   std::string scan_name;
   PreparedScan scan;
   std::unique_ptr<fit::ScanTarget> target;
   std::vector<fit::PhaseTime> timings;  ///< scan_preparation, index_build
+  /// The breast volumes' topologies and fill factorisations of the fits so far (the same result
+  /// as without it: transfer/volume_cache.h).
+  std::shared_ptr<transfer::VolumeCache> volumes = std::make_shared<transfer::VolumeCache>();
 };
 
 /// Prepares `scan` (file units) and builds its index with `options`' reverse-term samples.

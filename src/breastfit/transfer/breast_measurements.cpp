@@ -9,9 +9,11 @@
 #include <Eigen/SparseCore>
 
 #include "breastfit/core/errors.h"
+#include "breastfit/core/task_queue.h"
 #include "breastfit/mesh/adjacency.h"
 #include "breastfit/mesh/graph.h"
 #include "breastfit/transfer/curve_region.h"
+#include "breastfit/transfer/volume_cache.h"
 
 namespace breastfit::transfer {
 namespace {
@@ -39,14 +41,16 @@ void VolumeOptions::validate() const {
     throw InvalidInput("VolumeOptions.margin_mm = " + std::to_string(margin_mm) + ": must be >= 0");
 }
 
-RegionVolume region_volume(const TriangleMesh& surface, const std::vector<Index>& region, const VolumeOptions& options) {
+RegionVolume region_volume(const TriangleMesh& surface, const std::vector<Index>& region, const VolumeOptions& options,
+                           VolumeCache* cache) {
   options.validate();
   const ChestWallFill fill = options.fill;
   const Index nv = surface.num_vertices();
   if (region.empty()) throw InvalidInput("region_volume: empty region");
   for (const Index v : region)
     if (v < 0 || v >= nv) throw InvalidInput("region_volume: vertex index " + std::to_string(v) + " out of range");
-  const mesh::AdjacencyLists nbr = mesh::vertex_neighbours(surface);
+  const std::shared_ptr<const MeshTopology> topology = topology_of(surface, cache);
+  const mesh::AdjacencyLists& nbr = topology->neighbours;
   // Grown region: Dijkstra along edges from the region, up to margin_mm.
   const std::vector<double> dist = mesh::edge_distances(surface.V, nbr, region, options.margin_mm);
   std::vector<int> slot(static_cast<size_t>(nv), -1);
@@ -55,31 +59,47 @@ RegionVolume region_volume(const TriangleMesh& surface, const std::vector<Index>
     if (std::isfinite(dist[static_cast<size_t>(v)])) slot[static_cast<size_t>(v)] = n_in++;
   if (n_in >= nv) throw InvalidInput("region_volume: the region (with its margin) covers the whole mesh (no chest wall around it)");
 
-  // Uniform graph Laplacian L (symmetric: L = D − A over the mesh edges).
-  std::vector<Eigen::Triplet<double>> t;
-  for (Index v = 0; v < nv; ++v) {
-    t.emplace_back(v, v, static_cast<double>(nbr.size(v)));
-    for (const Index w : nbr[v]) t.emplace_back(v, w, -1.0);
-  }
-  SpMat L(nv, nv);
-  L.setFromTriplets(t.begin(), t.end());
-  // Membrane: L x = 0 on the region's rows. Thin plate: minimise ‖L x‖² → Lᵀ L x = 0 there.
-  const SpMat M = fill == ChestWallFill::ThinPlate ? SpMat(SpMat(L.transpose()) * L) : L;
-
-  // Split M into free (region) / fixed columns for the rows of the region.
+  // Split M into free (region) / fixed columns for the rows of the region: Mii and the fixed
+  // columns' part moved to the right-hand side.
   std::vector<Eigen::Triplet<double>> tii;
   Points rhs = Points::Zero(n_in, 3);
-  for (int k = 0; k < M.outerSize(); ++k)
-    for (SpMat::InnerIterator it(M, k); it; ++it) {
-      const int r = slot[static_cast<size_t>(it.row())];
-      if (r < 0) continue;
-      const int c = slot[static_cast<size_t>(it.col())];
-      if (c >= 0) tii.emplace_back(r, c, it.value());
-      else rhs.row(r) -= it.value() * surface.V.row(it.col());
+  if (fill == ChestWallFill::ThinPlate) {
+    // Uniform graph Laplacian L (symmetric: L = D − A over the mesh edges); thin plate: minimise
+    // ‖L x‖² → Lᵀ L x = 0 on the region's rows.
+    std::vector<Eigen::Triplet<double>> t;
+    for (Index v = 0; v < nv; ++v) {
+      t.emplace_back(v, v, static_cast<double>(nbr.size(v)));
+      for (const Index w : nbr[v]) t.emplace_back(v, w, -1.0);
     }
+    SpMat L(nv, nv);
+    L.setFromTriplets(t.begin(), t.end());
+    const SpMat M = SpMat(SpMat(L.transpose()) * L);
+    for (int k = 0; k < M.outerSize(); ++k)
+      for (SpMat::InnerIterator it(M, k); it; ++it) {
+        const int r = slot[static_cast<size_t>(it.row())];
+        if (r < 0) continue;
+        const int c = slot[static_cast<size_t>(it.col())];
+        if (c >= 0) tii.emplace_back(r, c, it.value());
+        else rhs.row(r) -= it.value() * surface.V.row(it.col());
+      }
+  } else {
+    // Membrane: L x = 0 on the region's rows, read from the neighbour lists of the region alone
+    // (the entries of L's rows, fixed columns in ascending order as in a pass over L's columns).
+    for (Index v = 0; v < nv; ++v) {
+      const int r = slot[static_cast<size_t>(v)];
+      if (r < 0) continue;
+      tii.emplace_back(r, r, static_cast<double>(nbr.size(v)));
+      for (const Index w : nbr[v]) {
+        const int c = slot[static_cast<size_t>(w)];
+        if (c >= 0) tii.emplace_back(r, c, -1.0);
+        else rhs.row(r) -= -1.0 * surface.V.row(w);
+      }
+    }
+  }
   SpMat Mii(n_in, n_in);
   Mii.setFromTriplets(tii.begin(), tii.end());
-  Eigen::SimplicialLDLT<SpMat> solver(Mii);
+  const std::shared_ptr<const FillSolver> factorized = cache ? cache->fill_solver(Mii) : std::make_shared<const FillSolver>(Mii);
+  const FillSolver& solver = *factorized;
   if (solver.info() != Eigen::Success)
     throw InvalidInput("region_volume: singular chest-wall fill (is the region attached to the rest of the mesh?)");
   RegionVolume out;
@@ -103,7 +123,8 @@ RegionVolume region_volume(const TriangleMesh& surface, const std::vector<Index>
   return out;
 }
 
-BreastMeasurements measure_breasts(const model::RiggedModel& model, const Points& posed_mm, const VolumeOptions& options) {
+BreastMeasurements measure_breasts(const model::RiggedModel& model, const Points& posed_mm, const VolumeOptions& options,
+                                   VolumeCache* cache, unsigned threads) {
   if (posed_mm.rows() != model.num_vertices())
     throw InvalidInput("measure_breasts: " + std::to_string(posed_mm.rows()) + " posed vertices for a model with " +
                        std::to_string(model.num_vertices()));
@@ -127,11 +148,14 @@ BreastMeasurements measure_breasts(const model::RiggedModel& model, const Points
   TriangleMesh skin;
   skin.V = posed_mm;
   skin.F = F;
-  for (int side = 0; side < 2; ++side) {
+  // The two sides are independent (each writes its own numbers and warnings, joined in order).
+  std::vector<std::string> side_warnings[2];
+  run_in_order(2, std::max(1u, threads), [&](std::size_t side) {
+    std::vector<std::string>& warnings = side_warnings[side];
     const std::string s = side == 0 ? "R" : "L";
     BreastSide& b = side == 0 ? m.right : m.left;
     const auto nipple = landmark("nipple_" + s);
-    if (!nipple) m.warnings.push_back("landmark nipple_" + s + " missing");
+    if (!nipple) warnings.push_back("landmark nipple_" + s + " missing");
     if (nipple && notch) b.notch_to_nipple_mm = (*nipple - *notch).norm();
 
     const model::Drawing* fold = nullptr;
@@ -150,7 +174,7 @@ BreastMeasurements measure_breasts(const model::RiggedModel& model, const Points
       b.imf_lowest_mm = lowest;
       if (nipple) b.nipple_to_imf_mm = (*nipple - lowest).norm();
     } else {
-      m.warnings.push_back("drawings imf_" + s + " and breast_contour_" + s + " missing");
+      warnings.push_back("drawings imf_" + s + " and breast_contour_" + s + " missing");
     }
 
     // Volume: the skin inside the breast contour against a chest wall spanning the contour
@@ -164,15 +188,16 @@ BreastMeasurements measure_breasts(const model::RiggedModel& model, const Points
         CurveVolumeOptions co;
         co.volume = options;
         co.target_edge_mm = 4.0;  // within 0.5 % of finer refinements (docs/TRANSFER.md), 4x fewer faces than 2 mm
-        b.volume_ml = curve_volume(skin, curve, co).volume_ml;
-        if (*b.volume_ml < 0) m.warnings.push_back("breast_" + s + " volume is negative (the skin lies under the chest-wall fill)");
+        b.volume_ml = curve_volume(skin, curve, co, cache).volume_ml;
+        if (*b.volume_ml < 0) warnings.push_back("breast_" + s + " volume is negative (the skin lies under the chest-wall fill)");
       } catch (const InvalidInput& e) {
-        m.warnings.push_back("breast_" + s + " volume not measured: " + e.what());
+        warnings.push_back("breast_" + s + " volume not measured: " + e.what());
       }
     } else {
-      m.warnings.push_back("drawing breast_contour_" + s + " missing: no volume");
+      warnings.push_back("drawing breast_contour_" + s + " missing: no volume");
     }
-  }
+  });
+  for (auto& w : side_warnings) m.warnings.insert(m.warnings.end(), w.begin(), w.end());
   const auto nr = landmark("nipple_R"), nl = landmark("nipple_L");
   if (nr && nl) m.inter_nipple_mm = (*nr - *nl).norm();
   m.volume_ratio = ratio(m.left.volume_ml, m.right.volume_ml);

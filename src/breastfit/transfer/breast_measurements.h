@@ -32,6 +32,8 @@
 
 namespace breastfit::transfer {
 
+class VolumeCache;
+
 /// How the chest wall under a region is filled (see the file comment).
 enum class ChestWallFill { Membrane, ThinPlate };
 
@@ -51,10 +53,12 @@ struct RegionVolume {
 /// Volume between the skin of `region` (vertex indices of `surface`) and its thin-plate fill.
 /// \param surface  triangle mesh, outward counter-clockwise triangles, mm
 /// \param region   vertex indices (unique, in range, at least one); must not touch every vertex
+/// \param cache    optional (volume_cache.h): the surface's topology and the fill's factorisation
+///                 reused when they are those of an earlier call (the same result)
 /// \throws InvalidInput for an empty region, an index out of range, a region without outside
 ///         vertices, or a singular fill (a region not attached to the rest of the mesh)
 RegionVolume region_volume(const TriangleMesh& surface, const std::vector<Index>& region,
-                           const VolumeOptions& options = {});
+                           const VolumeOptions& options = {}, VolumeCache* cache = nullptr);
 
 /// One breast's numbers; nullopt when an input (landmark, curve, region) is missing.
 struct BreastSide {
@@ -78,8 +82,13 @@ struct BreastMeasurements {
 /// Vertical ("lowest") is the direction xiphoid → sternal_notch of the posed model (falls back
 /// to the +z axis of posed_mm, with a warning, when a landmark is missing).
 /// \param posed_mm  #V by 3 posed vertices (mm), e.g. FitResult::vertices
+/// \param cache     optional (volume_cache.h): kept across the measurements of one template (a
+///                  session's re-fits) it spares the topology and the fills' factorisations
+///                  (the same result)
+/// \param threads   up to 2: the two breasts measured at the same time (the same result)
 /// \throws InvalidInput when posed_mm does not match the model
 BreastMeasurements measure_breasts(const model::RiggedModel& model, const Points& posed_mm,
-                                   const VolumeOptions& options = {});
+                                   const VolumeOptions& options = {}, VolumeCache* cache = nullptr,
+                                   unsigned threads = 1);
 
 }  // namespace breastfit::transfer

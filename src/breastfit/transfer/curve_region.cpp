@@ -18,6 +18,7 @@
 #include "breastfit/spatial/knn_index.h"
 #include "breastfit/spatial/point_triangle.h"
 #include "breastfit/transfer/polyline.h"
+#include "breastfit/transfer/volume_cache.h"
 
 namespace breastfit::transfer {
 namespace {
@@ -47,16 +48,18 @@ struct SurfaceGraph {
   const Points& V;
   const Triangles& F;
   Index nv;
-  mesh::AdjacencyLists nbr;  ///< neighbours of every vertex
-  mesh::AdjacencyLists vf;   ///< triangles around every vertex
-  double h;                  ///< mean edge length (at least 1e-6)
+  std::shared_ptr<const MeshTopology> topology;
+  const mesh::AdjacencyLists& nbr;  ///< neighbours of every vertex
+  const mesh::AdjacencyLists& vf;   ///< triangles around every vertex
+  double h;                         ///< mean edge length (at least 1e-6)
 
-  explicit SurfaceGraph(const TriangleMesh& mesh)
+  SurfaceGraph(const TriangleMesh& mesh, VolumeCache* cache)
       : V(mesh.V),
         F(mesh.F),
         nv(mesh.num_vertices()),
-        nbr(mesh::vertex_neighbours(mesh)),
-        vf(mesh::vertex_faces(mesh)),
+        topology(topology_of(mesh, cache)),
+        nbr(topology->neighbours),
+        vf(topology->faces),
         h(std::max(mean_edge_length(mesh.V, mesh.F), 1e-6)) {}
 
   /// Closest point to p on the triangles around vertex v (the surface near v).
@@ -420,9 +423,9 @@ void classify_loop_vertices(const SurfaceGraph& g, const SampledCurve& curve, co
 /// curve_region; with `border`, also the nearest point of the curve (its feet on the surface)
 /// to each loop vertex, in the order of CurveRegion::loop.
 CurveRegion find_region(const TriangleMesh& mesh, const Points& closed_curve_mm, const CurveRegionOptions& options,
-                        std::vector<Vec3>* border) {
+                        std::vector<Vec3>* border, VolumeCache* cache) {
   const Points C = checked_curve(mesh, closed_curve_mm, options);
-  const SurfaceGraph g(mesh);
+  const SurfaceGraph g(mesh, cache);
   SampledCurve curve = sample_curve(C, g.h);
   CurvePlane plane = best_fit_plane(curve.S);
   const SnappedCurve snapped = snap_to_surface(g, curve.S, options.max_curve_distance_mm + 4 * g.h);
@@ -457,9 +460,10 @@ CurveRegion find_region(const TriangleMesh& mesh, const Points& closed_curve_mm,
 /// The patch under a region: the triangles touching the region ∪ loop grown by `grow` mm along
 /// the edges and by one more ring (two rings of triangles around the grown region in all), with
 /// the vertices they use renumbered in order.
-TriangleMesh patch_around(const TriangleMesh& mesh, const CurveRegion& region, double grow) {
+TriangleMesh patch_around(const TriangleMesh& mesh, const CurveRegion& region, double grow, VolumeCache* cache) {
   const Index nv = mesh.num_vertices();
-  const mesh::AdjacencyLists nbr = mesh::vertex_neighbours(mesh);
+  const std::shared_ptr<const MeshTopology> topology = topology_of(mesh, cache);
+  const mesh::AdjacencyLists& nbr = topology->neighbours;
   std::vector<Index> sources = region.inside;
   sources.insert(sources.end(), region.loop.begin(), region.loop.end());
   const std::vector<double> dist = mesh::edge_distances(mesh.V, nbr, sources, grow);
@@ -493,7 +497,7 @@ TriangleMesh patch_around(const TriangleMesh& mesh, const CurveRegion& region, d
 }  // namespace
 
 CurveRegion curve_region(const TriangleMesh& mesh, const Points& closed_curve_mm, const CurveRegionOptions& options) {
-  return find_region(mesh, closed_curve_mm, options, nullptr);
+  return find_region(mesh, closed_curve_mm, options, nullptr, nullptr);
 }
 
 std::vector<Index> vertices_inside_curve(const TriangleMesh& mesh, const Points& closed_curve_mm,
@@ -504,7 +508,7 @@ std::vector<Index> vertices_inside_curve(const TriangleMesh& mesh, const Points&
 namespace {
 
 // Refuses a region whose surface has a hole or an open border inside the curve.
-void check_no_hole_inside(const TriangleMesh& mesh, const CurveRegion& region) {
+void check_no_hole_inside(const TriangleMesh& mesh, const CurveRegion& region, VolumeCache& cache) {
   const std::vector<bool> inside = [&] {
     std::vector<bool> in(static_cast<size_t>(mesh.num_vertices()), false);
     for (Index v : region.inside) in[static_cast<size_t>(v)] = true;
@@ -514,7 +518,7 @@ void check_no_hole_inside(const TriangleMesh& mesh, const CurveRegion& region) {
   int holes = 0;
   double longest = 0;
   Index border_vertices = 0;
-  for (const auto& loop : mesh::boundary_loops(mesh)) {
+  for (const auto& loop : *cache.boundary_loops(mesh)) {
     const auto n = std::count_if(loop.begin(), loop.end(), [&](Index v) { return inside[static_cast<size_t>(v)]; });
     if (n == 0) continue;
     ++holes;
@@ -532,16 +536,19 @@ void check_no_hole_inside(const TriangleMesh& mesh, const CurveRegion& region) {
 
 }  // namespace
 
-CurveVolume curve_volume(const TriangleMesh& mesh, const Points& closed_curve_mm, const CurveVolumeOptions& options) {
+CurveVolume curve_volume(const TriangleMesh& mesh, const Points& closed_curve_mm, const CurveVolumeOptions& options,
+                         VolumeCache* cache) {
   options.validate();
-  const CurveRegion region = curve_region(mesh, closed_curve_mm, options.region);
-  check_no_hole_inside(mesh, region);
+  VolumeCache own;  // without a cache: this call's own (the mesh's and the patch's topology, used twice each)
+  VolumeCache& c = cache ? *cache : own;
+  const CurveRegion region = find_region(mesh, closed_curve_mm, options.region, nullptr, &c);
+  check_no_hole_inside(mesh, region, c);
   CurveVolume out;
   out.region = region.inside;
   out.mean_curve_distance_mm = region.mean_curve_distance_mm;
 
   // The patch under the curve: region ∪ loop, grown by the margin (generously) and two rings.
-  TriangleMesh patch = patch_around(mesh, region, 1.5 * options.volume.margin_mm);
+  TriangleMesh patch = patch_around(mesh, region, 1.5 * options.volume.margin_mm, &c);
   while (options.target_edge_mm > 0 && mean_edge_length(patch.V, patch.F) > options.target_edge_mm &&
          4 * static_cast<double>(patch.num_faces()) <= static_cast<double>(options.max_refined_faces)) {
     patch = mesh::subdivide(patch, /*loop=*/false);
@@ -551,17 +558,17 @@ CurveVolume curve_volume(const TriangleMesh& mesh, const Points& closed_curve_mm
   // curve: the membrane spans the curve, not the first vertices outside it (which would add a
   // band of up to an edge around it: +2 % at 2 mm edges on the bench's truth surfaces).
   std::vector<Vec3> border;
-  const CurveRegion fine = find_region(patch, closed_curve_mm, options.region, &border);
+  const CurveRegion fine = find_region(patch, closed_curve_mm, options.region, &border, &c);
   std::vector<Index> strictly_inside;
   std::set_difference(fine.inside.begin(), fine.inside.end(), fine.loop.begin(), fine.loop.end(),
                       std::back_inserter(strictly_inside));
   if (strictly_inside.empty()) {  // a curve about one edge across: the vertices inside it
-    out.volume_ml = region_volume(patch, fine.inside, options.volume).volume_mm3 / 1000.0;
+    out.volume_ml = region_volume(patch, fine.inside, options.volume, &c).volume_mm3 / 1000.0;
     out.measured_vertices = static_cast<Index>(fine.inside.size());
     return out;
   }
   for (size_t i = 0; i < fine.loop.size(); ++i) patch.V.row(fine.loop[i]) = border[i].transpose();
-  out.volume_ml = region_volume(patch, strictly_inside, options.volume).volume_mm3 / 1000.0;
+  out.volume_ml = region_volume(patch, strictly_inside, options.volume, &c).volume_mm3 / 1000.0;
   out.measured_vertices = static_cast<Index>(strictly_inside.size());
   return out;
 }

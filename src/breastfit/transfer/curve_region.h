@@ -33,6 +33,8 @@
 
 namespace breastfit::transfer {
 
+class VolumeCache;
+
 struct CurveRegionOptions {
   /// Mean distance from the curve to the surface above which the curve is rejected (not drawn
   /// on this mesh, or in another frame or units), mm (> 0).
@@ -88,9 +90,12 @@ struct CurveVolume {
 /// hole or open border there (a scan's hole under the breast contour) is refused, since the
 /// missing skin would count as empty space (on a scan with a hole inside the right contour
 /// +30 % over the truth); holes are not filled, measure on the fit instead (its fitted.ply).
+/// `cache` (optional, volume_cache.h): the topologies and fill factorisations reused from earlier
+/// measurements (the same result, sooner).
 /// \throws InvalidInput as curve_region and region_volume, for a hole or open border inside the
 ///         curve (naming how many and how long), or for invalid options
-CurveVolume curve_volume(const TriangleMesh& mesh, const Points& closed_curve_mm, const CurveVolumeOptions& options = {});
+CurveVolume curve_volume(const TriangleMesh& mesh, const Points& closed_curve_mm, const CurveVolumeOptions& options = {},
+                         VolumeCache* cache = nullptr);
 
 /// curve_volume(...).volume_ml.
 double volume_inside_curve_ml(const TriangleMesh& mesh, const Points& closed_curve_mm,
