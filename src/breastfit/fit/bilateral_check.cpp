@@ -11,12 +11,6 @@ namespace {
 constexpr std::array<const char*, 5> kPairs = {"acromion_", "midaxillary_", "pectoral_insertion_", "nipple_",
                                                "lowest_breast_"};
 
-const LandmarkTarget* find(const std::vector<LandmarkTarget>& landmarks, const std::string& name) {
-  for (const auto& t : landmarks)
-    if (t.name == name) return &t;
-  return nullptr;
-}
-
 // The median (the mean of the middle two for an even count); `v` not empty.
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
@@ -36,8 +30,8 @@ std::optional<RobustPlane> plane_without(const std::vector<LandmarkTarget>& land
   std::vector<Vec3> mids = {notch, xiphoid};
   for (const char* pair : kPairs) {
     if (pair == skip) continue;
-    const LandmarkTarget* r = find(landmarks, std::string(pair) + "R");
-    const LandmarkTarget* l = find(landmarks, std::string(pair) + "L");
+    const LandmarkTarget* r = find_landmark(landmarks, std::string(pair) + "R");
+    const LandmarkTarget* l = find_landmark(landmarks, std::string(pair) + "L");
     if (!r || !l) continue;
     const Vec3 d = l->position - r->position;
     if (d.norm() <= 0) continue;
@@ -88,15 +82,15 @@ std::optional<Vec3> bilateral_tolerance_mm(const std::string& prefix, double lan
 std::vector<BilateralCheck> check_bilateral_pairs(const std::vector<LandmarkTarget>& landmarks,
                                                   double landmark_check_mm) {
   std::vector<BilateralCheck> out;
-  const LandmarkTarget* notch = find(landmarks, "sternal_notch");
-  const LandmarkTarget* xiphoid = find(landmarks, "xiphoid");
+  const LandmarkTarget* notch = find_landmark(landmarks, "sternal_notch");
+  const LandmarkTarget* xiphoid = find_landmark(landmarks, "xiphoid");
   if (!notch || !xiphoid || (notch->position - xiphoid->position).norm() <= 0) return out;
   const Vec3 sternum_axis = (notch->position - xiphoid->position).normalized();
   static const std::array<const char*, 3> kAxes = {"sideways", "vertically", "front to back"};
   for (const char* pair : kPairs) {
     const auto tolerance = bilateral_tolerance_mm(pair, landmark_check_mm);
-    const LandmarkTarget* r = find(landmarks, std::string(pair) + "R");
-    const LandmarkTarget* l = find(landmarks, std::string(pair) + "L");
+    const LandmarkTarget* r = find_landmark(landmarks, std::string(pair) + "R");
+    const LandmarkTarget* l = find_landmark(landmarks, std::string(pair) + "L");
     if (!tolerance || !r || !l) continue;
     const auto plane = plane_without(landmarks, pair, notch->position, xiphoid->position);
     if (!plane) continue;

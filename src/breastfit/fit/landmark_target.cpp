@@ -7,4 +7,10 @@ double landmark_weight(const std::string& name) {
   return 1.0;
 }
 
+const LandmarkTarget* find_landmark(const std::vector<LandmarkTarget>& targets, const std::string& name) {
+  for (const auto& t : targets)
+    if (t.name == name) return &t;
+  return nullptr;
+}
+
 }  // namespace breastfit::fit

@@ -1,6 +1,7 @@
 #pragma once
 /// \file An input landmark matched to one of the model's landmarks, and its weight in the fit.
 #include <string>
+#include <vector>
 
 #include "breastfit/core/types.h"
 
@@ -22,5 +23,8 @@ struct LandmarkTarget {
 /// 0.5 → 0.1 took the true-surface error from 2.78 to 2.56 mm and the landmark error from 4.29
 /// to 4.95 mm. (Leaving their vertical offset free instead did not help: 2.82 mm.)
 double landmark_weight(const std::string& name);
+
+/// The target named `name` in `targets` (the first one), or nullptr.
+const LandmarkTarget* find_landmark(const std::vector<LandmarkTarget>& targets, const std::string& name);
 
 }  // namespace breastfit::fit

@@ -5,23 +5,14 @@
 #include "breastfit/fit/jugular_notch.h"
 
 namespace breastfit::fit {
-namespace {
-
-const LandmarkTarget* find(const std::vector<LandmarkTarget>& landmarks, const std::string& name) {
-  for (const auto& t : landmarks)
-    if (t.name == name) return &t;
-  return nullptr;
-}
-
-}  // namespace
 
 std::optional<MidPlane> landmark_midplane(const std::vector<LandmarkTarget>& landmarks, const std::string& skip) {
   Vec3 right_to_left = Vec3::Zero(), sum = Vec3::Zero();
   int points = 0;
   for (const char* pair : {"acromion_", "midaxillary_", "pectoral_insertion_", "nipple_", "lowest_breast_"}) {
     const std::string r = std::string(pair) + "R", l = std::string(pair) + "L";
-    const LandmarkTarget* a = find(landmarks, r);
-    const LandmarkTarget* b = find(landmarks, l);
+    const LandmarkTarget* a = find_landmark(landmarks, r);
+    const LandmarkTarget* b = find_landmark(landmarks, l);
     if (!a || !b || r == skip || l == skip) continue;
     right_to_left += (b->position - a->position).normalized();
     sum += 0.5 * (a->position + b->position);
@@ -29,7 +20,7 @@ std::optional<MidPlane> landmark_midplane(const std::vector<LandmarkTarget>& lan
   }
   if (points == 0 || right_to_left.norm() <= 0) return std::nullopt;
   for (const char* name : {"sternal_notch", "xiphoid"})
-    if (const LandmarkTarget* t = find(landmarks, name); t && name != skip) {
+    if (const LandmarkTarget* t = find_landmark(landmarks, name); t && name != skip) {
       sum += t->position;
       ++points;
     }

@@ -162,7 +162,7 @@ void summarize_orientation(const OrientationSearch& search, const FitOptions& op
 }
 
 bool is_given(const std::vector<LandmarkTarget>& given, const std::string& name) {
-  return std::any_of(given.begin(), given.end(), [&](const LandmarkTarget& t) { return t.name == name; });
+  return find_landmark(given, name) != nullptr;
 }
 
 // Targets for the nipples not in `given`: the breast's tip on the scan near each posed nipple.
@@ -242,8 +242,7 @@ std::vector<LandmarkTarget> jugular_notch_targets(const model::RiggedModel& mode
 // A landmark's position: its target in `held` when there is one, else the posed model's.
 std::optional<Vec3> held_or_posed(const model::RiggedModel& model, const Points& V, const model::PoseParams& params,
                                   const std::vector<LandmarkTarget>& held, const std::string& name) {
-  for (const auto& t : held)
-    if (t.name == name) return t.position;
+  if (const LandmarkTarget* t = find_landmark(held, name)) return t->position;
   const auto idx = model.landmark_index(name);
   if (!idx) return std::nullopt;
   return model_landmark_position(model, *idx, V, params);
@@ -589,12 +588,11 @@ FitResult refit_template(const model::RiggedModel& model, ScanTarget& scan, std:
   PlacedCheck placed;
   if (resolve_threads(options.threads) >= 2) {
     warm.threads = 1;  // the problem's options: both tasks' searches on their own thread
-    const FitSummary before = summary;  // the predictions read it while the other task writes it
+    FitSummary read_only = summary;  // the predictions read it while the other task writes it
     run_in_order(2, 2, [&](std::size_t task) {
       if (task == 0) {
         auto own = std::make_unique<Problem>(model, scan, warm, landmarks);
         model::PoseParams at = params;
-        FitSummary read_only = before;
         placed = hold_off_misplaced(model, scan, own, at, landmarks, warm, read_only, on_iteration, false);
       } else {
         finish_surface(model, scan, *problem, params, warm, result);

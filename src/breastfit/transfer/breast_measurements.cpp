@@ -92,7 +92,7 @@ RegionVolume region_volume(const TriangleMesh& surface, const std::vector<Index>
       for (const Index w : nbr[v]) {
         const int c = slot[static_cast<size_t>(w)];
         if (c >= 0) tii.emplace_back(r, c, -1.0);
-        else rhs.row(r) -= -1.0 * surface.V.row(w);
+        else rhs.row(r) += surface.V.row(w);  // −(−1) · x_w
       }
     }
   }
