@@ -1,6 +1,10 @@
 #include "breastfit/fit/landmark_prediction.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include <Eigen/Cholesky>
+#include <Eigen/LU>
 
 #include "breastfit/fit/sliding_landmarks.h"
 
@@ -24,13 +28,59 @@ Equations assemble(const Problem& problem, const std::vector<int>& active, const
   return {eq.H(), eq.g()};
 }
 
-// The parameters after the Newton step of the energy `all` minus `removed`. A tiny relative
-// damping keeps directions the energy does not see (if any) where they are.
+// A factor U (n × k, k the rank) of the positive semi-definite H = U Uᵀ of a few residual rows:
+// pivoted Cholesky, stopped when what is left of the diagonal is rounding.
+Eigen::MatrixXd low_rank_factor(const Eigen::MatrixXd& H) {
+  const Eigen::Index n = H.rows();
+  Eigen::VectorXd d = H.diagonal();
+  const double floor = 1e-12 * std::max(d.maxCoeff(), 0.0);
+  Eigen::MatrixXd U(n, 0);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    Eigen::Index j = 0;
+    if (!(d.maxCoeff(&j) > floor) || !(d[j] > 0)) break;
+    Eigen::VectorXd u = H.col(j) - U * U.row(j).transpose();
+    u /= std::sqrt(u[j]);
+    d -= u.cwiseAbs2();
+    d[j] = 0;
+    U.conservativeResize(Eigen::NoChange, k + 1);
+    U.col(k) = u;
+  }
+  return U;
+}
+
+// The Newton steps of the energy `all` minus a few residual rows `removed`, for many `removed`
+// from one factorisation: A = H + damping is factored once, A − H_removed solved by the
+// Sherman–Morrison–Woodbury identity with H_removed = U Uᵀ of rank k (a landmark: 3 or fewer),
+//   (A − U Uᵀ)⁻¹ b = y + Z (I − Uᵀ Z)⁻¹ Uᵀ y,  y = A⁻¹ b, Z = A⁻¹ U,
+// k + 1 triangular solves instead of a factorisation per landmark. The tiny relative damping
+// keeps directions the energy does not see (if any) where they are.
+class LeaveOutSolver {
+ public:
+  explicit LeaveOutSolver(const Equations& all) : g_(all.g) {
+    Eigen::MatrixXd A = all.H;
+    A.diagonal() += 1e-6 * all.H.diagonal().cwiseAbs() + Eigen::VectorXd::Constant(A.rows(), 1e-9);
+    ldlt_.compute(A);
+  }
+  // The step −(A − H_removed)⁻¹ (g − g_removed).
+  Eigen::VectorXd step(const Equations& removed) const {
+    const Eigen::VectorXd y = ldlt_.solve(-(g_ - removed.g));
+    const Eigen::MatrixXd U = low_rank_factor(removed.H);
+    if (U.cols() == 0) return y;
+    const Eigen::MatrixXd Z = ldlt_.solve(U);
+    Eigen::MatrixXd C = -U.transpose() * Z;
+    C.diagonal().array() += 1.0;
+    return y + Z * C.partialPivLu().solve(U.transpose() * y);
+  }
+
+ private:
+  Eigen::VectorXd g_;
+  Eigen::LDLT<Eigen::MatrixXd> ldlt_;
+};
+
+// The parameters after the Newton step of the energy `all` (factored in `solver`) minus `removed`.
 model::PoseParams newton_step(const Problem& problem, const model::PoseParams& params, const std::vector<int>& active,
-                              const Equations& all, const Equations& removed) {
-  Eigen::MatrixXd A = all.H - removed.H;
-  A.diagonal() += 1e-6 * all.H.diagonal().cwiseAbs() + Eigen::VectorXd::Constant(A.rows(), 1e-9);
-  const Eigen::VectorXd x = A.ldlt().solve(-(all.g - removed.g));
+                              const LeaveOutSolver& solver, const Equations& removed) {
+  const Eigen::VectorXd x = solver.step(removed);
   const auto& layout = problem.evaluator().layout();
   Eigen::VectorXd delta = Eigen::VectorXd::Zero(layout.num_params());
   if (x.allFinite())
@@ -45,21 +95,20 @@ model::PoseParams newton_step(const Problem& problem, const model::PoseParams& p
 model::PoseParams leave_out_landmarks(Problem& problem, const model::PoseParams& params, const std::vector<int>& active,
                                       const std::vector<size_t>& left_out) {
   problem.evaluator().set_params(params);
-  const Equations all = assemble(problem, active, nullptr);
-  const Equations removed = assemble(problem, active, &left_out);
-  return newton_step(problem, params, active, all, removed);
+  const LeaveOutSolver solver(assemble(problem, active, nullptr));
+  return newton_step(problem, params, active, solver, assemble(problem, active, &left_out));
 }
 
 std::vector<Vec3> predict_left_out_landmarks(Problem& problem, const model::PoseParams& params,
-                                             const std::vector<int>& active) {
+                                             const std::vector<int>& active, std::vector<model::PoseParams>* steps_out) {
   auto& ev = problem.evaluator();
   ev.set_params(params);
-  const Equations all = assemble(problem, active, nullptr);
+  const LeaveOutSolver solver(assemble(problem, active, nullptr));
   const auto& landmarks = problem.landmarks();
   std::vector<model::PoseParams> steps;
   for (size_t i = 0; i < landmarks.size(); ++i) {
     const std::vector<size_t> one{i};
-    steps.push_back(newton_step(problem, params, active, all, assemble(problem, active, &one)));
+    steps.push_back(newton_step(problem, params, active, solver, assemble(problem, active, &one)));
   }
   std::vector<Vec3> out;
   for (size_t i = 0; i < landmarks.size(); ++i) {
@@ -67,11 +116,13 @@ std::vector<Vec3> predict_left_out_landmarks(Problem& problem, const model::Pose
     out.push_back(model_landmark_position(ev.model(), landmarks[i].model_landmark, ev.vertices(), steps[i]));
   }
   ev.set_params(params);
+  if (steps_out) *steps_out = std::move(steps);
   return out;
 }
 
 Vec3 predict_left_out_relinearized(Problem& problem, const model::PoseParams& params, const std::vector<int>& active,
-                                   size_t i, int steps, const Relinearization& relinearization) {
+                                   size_t i, int steps, const Relinearization& relinearization,
+                                   const model::PoseParams* linear_step) {
   auto& ev = problem.evaluator();
   const std::vector<size_t> one{i};
   const auto energy_without = [&] { return problem.evaluate(nullptr).total() - problem.evaluate_landmark(i, nullptr); };
@@ -84,10 +135,15 @@ Vec3 predict_left_out_relinearized(Problem& problem, const model::PoseParams& pa
   model::PoseParams at = params;
   ev.set_params(at);
   for (int k = 0; k < steps; ++k) {
+    if (k == 0 && linear_step) {
+      at = *linear_step;
+      ev.set_params(at);
+      continue;
+    }
     if (k > 0) recompute();
-    const double before = energy_without();
+    const double before = k > 0 ? energy_without() : 0.0;  // the first step is taken whatever it does
     const model::PoseParams next =
-        newton_step(problem, at, active, assemble(problem, active, nullptr), assemble(problem, active, &one));
+        newton_step(problem, at, active, LeaveOutSolver(assemble(problem, active, nullptr)), assemble(problem, active, &one));
     ev.set_params(next);
     if (k > 0 && !(energy_without() < before)) break;  // went too far at these correspondences (the first is the linear one)
     at = next;

@@ -28,9 +28,12 @@ model::PoseParams leave_out_landmarks(Problem& problem, const model::PoseParams&
                                       const std::vector<size_t>& left_out);
 
 /// For each of problem.landmarks() (in that order), the model's landmark position after the step of
-/// leave_out_landmarks with that landmark alone left out (one assembly of H for all).
+/// leave_out_landmarks with that landmark alone left out (one assembly and one factorisation of H
+/// for all: each landmark's own rows are a low-rank update). With `steps`, also the parameters after
+/// each step (predict_left_out_relinearized's first step).
 std::vector<Vec3> predict_left_out_landmarks(Problem& problem, const model::PoseParams& params,
-                                             const std::vector<int>& active);
+                                             const std::vector<int>& active,
+                                             std::vector<model::PoseParams>* steps = nullptr);
 
 /// The correspondences a re-linearised leave-one-out recomputes after each step.
 struct Relinearization {
@@ -43,10 +46,12 @@ struct Relinearization {
 /// energy without it, each from the previous one with the correspondences recomputed: the path
 /// back over the curved skin that one linear step (predict_left_out_landmarks) cuts short — a
 /// landmark walked 20–40 mm along the skin is predicted farther from the click. The first step is
-/// the linear one; a later step that raises the energy without the landmark (at its own
-/// correspondences) ends the walk. The problem is left
+/// the linear one (`linear_step` when given: predict_left_out_landmarks' parameters for landmark
+/// `i`, at the same correspondences, not computed again); a later step that raises the energy
+/// without the landmark (at its own correspondences) ends the walk. The problem is left
 /// at `params` with its correspondences and terms recomputed there.
 Vec3 predict_left_out_relinearized(Problem& problem, const model::PoseParams& params, const std::vector<int>& active,
-                                   size_t i, int steps, const Relinearization& relinearization);
+                                   size_t i, int steps, const Relinearization& relinearization,
+                                   const model::PoseParams* linear_step = nullptr);
 
 }  // namespace breastfit::fit

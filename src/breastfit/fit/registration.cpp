@@ -323,13 +323,14 @@ void finish_checks(const model::RiggedModel& model, const std::vector<LandmarkTa
 // Where the scan's anatomy and the other landmarks put each of the first `given` landmarks of
 // `problem` (landmark_prediction.h), at the final correspondences (the anatomical targets held
 // after them are not checked).
+// With `steps`, also the parameters after each landmark's leave-one-out step.
 std::vector<Vec3> predict_given(Problem& problem, const model::PoseParams& params, const FitOptions& options,
-                                size_t given) {
+                                size_t given, std::vector<model::PoseParams>* steps = nullptr) {
   problem.evaluator().set_params(params);
   problem.update_correspondences(options.correspondences.max_distance_end_mm, 1, options.uses_reverse_term());
   problem.update_terms(options.refine.robust_landmarks);
   std::vector<Vec3> out = predict_left_out_landmarks(
-      problem, params, active_parameters(problem.evaluator().layout(), options.refine, options.max_blendshapes));
+      problem, params, active_parameters(problem.evaluator().layout(), options.refine, options.max_blendshapes), steps);
   out.resize(given);
   return out;
 }
@@ -341,8 +342,10 @@ std::vector<Vec3> predict_given(Problem& problem, const model::PoseParams& param
 // mid-axillary point, the re-linearised model drifts as far as the landmark-free fit does).
 constexpr int kRelinearizedLandmarks = 2;
 constexpr int kRelinearizationSteps = 4;
+// `linear_steps`: predict_given's parameters after each leave-one-out step (the walks' first step).
 void relinearize_suspects(Problem& problem, const model::PoseParams& params, const FitOptions& options,
-                          const std::vector<LandmarkTarget>& given, std::vector<Vec3>& predicted) {
+                          const std::vector<LandmarkTarget>& given, std::vector<Vec3>& predicted,
+                          const std::vector<model::PoseParams>& linear_steps) {
   std::vector<std::pair<double, size_t>> suspects;
   for (size_t i = 0; i < given.size(); ++i) {
     const double ratio = (predicted[i] - given[i].position).norm() /
@@ -355,7 +358,8 @@ void relinearize_suspects(Problem& problem, const model::PoseParams& params, con
   const Relinearization at_end{options.correspondences.max_distance_end_mm, options.uses_reverse_term(),
                                options.refine.robust_landmarks};
   for (const auto& [ratio, i] : suspects)
-    predicted[i] = predict_left_out_relinearized(problem, params, active, i, kRelinearizationSteps, at_end);
+    predicted[i] = predict_left_out_relinearized(problem, params, active, i, kRelinearizationSteps, at_end,
+                                                 i < linear_steps.size() ? &linear_steps[i] : nullptr);
 }
 
 // Each bilateral pair against its mirror image (bilateral_check.h), the check kept by the member
@@ -419,8 +423,9 @@ PlacedCheck hold_off_misplaced(const model::RiggedModel& model, ScanTarget& scan
   out.flagged.assign(given.size(), false);
   if (summary.termination == Termination::Aborted || summary.termination == Termination::NumericalFailure) return out;
   if (given.size() >= kMinLandmarksToPredict) {
-    out.predicted = predict_given(*problem, params, options, given.size());
-    relinearize_suspects(*problem, params, options, given, out.predicted);
+    std::vector<model::PoseParams> linear_steps;
+    out.predicted = predict_given(*problem, params, options, given.size(), &linear_steps);
+    relinearize_suspects(*problem, params, options, given, out.predicted, linear_steps);
   }
   out.anatomy = check_anatomy(model, *problem, params, scan, given, out.predicted, options);
   std::vector<size_t> off;
