@@ -17,6 +17,7 @@
 #include "breastfit/fit/midline_notch_check.h"
 #include "breastfit/fit/orientation_search.h"
 #include "breastfit/fit/parallel_chunks.h"
+#include "breastfit/fit/pectoral_check.h"
 #include "breastfit/fit/pectoral_insertion.h"
 #include "breastfit/fit/stage_minimizer.h"
 #include "breastfit/fit/problem.h"
@@ -377,12 +378,49 @@ void check_pairs(const std::vector<LandmarkTarget>& given, const FitOptions& opt
   }
 }
 
+// Each given pectoral insertion against the same side's acromion and the fitted arm
+// (pectoral_check.h), in the fitted sternum's frame; skipped when that acromion is suspect itself
+// (beyond its prediction's or its pair's tolerance: the reference would be wrong).
+void check_insertions(const model::RiggedModel& model, const Points& V, const model::PoseParams& params,
+                      const std::vector<LandmarkTarget>& given, const std::vector<Vec3>& predicted,
+                      const FitOptions& options, std::vector<std::optional<AnatomyCheck>>& out) {
+  const auto posed = [&](const char* name) -> std::optional<Vec3> {
+    const auto idx = model.landmark_index(name);
+    if (!idx) return std::nullopt;
+    return model_landmark_position(model, *idx, V, params);
+  };
+  const auto notch = posed("sternal_notch"), xiphoid = posed("xiphoid");
+  const auto right = posed("nipple_R"), left = posed("nipple_L");
+  if (!notch || !xiphoid || !right || !left) return;
+  const auto index_of = [&](const std::string& name) {
+    return static_cast<size_t>(
+        std::find_if(given.begin(), given.end(), [&](const LandmarkTarget& t) { return t.name == name; }) -
+        given.begin());
+  };
+  for (const char side : {'R', 'L'}) {
+    const std::string s(1, side);
+    const size_t i = index_of("pectoral_insertion_" + s), a = index_of("acromion_" + s);
+    if (i >= given.size() || a >= given.size() || out[i]) continue;
+    const bool acromion_suspect =
+        (out[a] && out[a]->distance_mm > out[a]->tolerance_mm) ||
+        (a < predicted.size() && (predicted[a] - given[a].position).norm() >
+                                     placed_landmark_tolerance_mm(given[a].name, options.landmark_check_mm));
+    const auto frame = sternum_frame(*notch, *xiphoid, *right, *left, side);
+    const auto arm = upper_arm_axis(model, V, params, s);
+    if (acromion_suspect || !frame || !arm) continue;
+    const PectoralCheck c =
+        check_pectoral_insertion(*frame, *arm, given[i].position, given[a].position, options.landmark_check_mm);
+    out[i] = AnatomyCheck{c.distance_mm, c.tolerance_mm, "where 'acromion_" + s + "' and the fitted arm put it"};
+  }
+}
+
 // Each given nipple and sternal notch against its own definition on the scan, searched around
 // where the other landmarks put it (`predicted`; the fitted one without predictions, since the
 // fit follows a wrong click): the nipples at the breast's tip (landmark_check.h; along the scan's
 // own normals: the fitted model's turn with a wrongly placed nipple), the notch at the jugular
 // notch on the other landmarks' midline (midline_notch_check.h); the acromia, mid-axillary and
-// lowest breast points against their partner's mirror image (check_pairs).
+// lowest breast points against their partner's mirror image (check_pairs); the pectoral insertions
+// against their acromion and the fitted arm (check_insertions).
 std::vector<std::optional<AnatomyCheck>> check_anatomy(const model::RiggedModel& model, Problem& problem,
                                                        const model::PoseParams& params, const ScanTarget& scan,
                                                        const std::vector<LandmarkTarget>& given,
@@ -407,6 +445,7 @@ std::vector<std::optional<AnatomyCheck>> check_anatomy(const model::RiggedModel&
     }
   }
   check_pairs(given, options, out);
+  check_insertions(model, V, params, given, predicted, options, out);
   return out;
 }
 
