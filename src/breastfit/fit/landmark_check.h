@@ -56,9 +56,7 @@ struct LandmarkCheck {
   double factor = 1;        ///< robust factor the fit's last stage gave it (1 = full weight)
   /// Given landmark ↔ the landmark found on the scan by its own anatomical definition — the
   /// nipples: the breast's tip (breast_tip_on_scan); the sternal notch: the jugular notch on the
-  /// other landmarks' midline (midline_notch_check.h); the acromia, mid-axillary and lowest breast
-  /// points: the partner's mirror image (bilateral_check.h); the pectoral insertions: where the
-  /// acromion and the fitted arm put them (pectoral_check.h); < 0 when not checked.
+  /// other landmarks' midline (midline_notch_check.h); < 0 when not checked.
   double anatomy_distance_mm = -1;
   double anatomy_tolerance_mm = 0;
   std::string anatomy;      ///< what was found on the scan ("the breast's tip", …); empty when not checked
