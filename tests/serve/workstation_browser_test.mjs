@@ -175,6 +175,8 @@ try {
     st.result.generation + 1, { timeout: 120000 });
   st = await page.evaluate(() => window.breastfitTest.state());
   check(st.result.warm && st.result.usable, `the re-fit is warm-started and usable (${st.result.server_ms.toFixed(0)} ms in the server)`);
+  check(st.result.complete && st.result.surface_ms <= st.result.server_ms,
+    `the page shows the whole re-fit (model and drawings after ${st.result.surface_ms.toFixed(0)} ms)`);
   await page.check('#show-distance');
   await page.waitForTimeout(300);
   await page.screenshot({ path: path.join(shots, 'workstation_distance.png') });
