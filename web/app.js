@@ -361,7 +361,7 @@ function landmarkList() {
 
 // Follows the scan's running job (fit or suggest) through the server's event stream until it
 // ends; resolves to its final status (null when the connection was lost). `onResult` sees a
-// re-fit's first result (the fitted model, drawings and distances) while the job still runs.
+// re-fit's first result (the fitted model and drawings) while the job still runs.
 function watchJob(onProgress, onResult = () => {}) {
   return new Promise((resolve) => {
     const events = new EventSource(`/api/scans/${state.scanId}/events`);
@@ -389,7 +389,7 @@ async function fit() {
     (first) => {
       const r = first.result;
       $('progress').textContent = `Re-fit #${r.generation}: model and drawings in ${(r.surface_ms / 1000).toFixed(2)} s; ` +
-        'checking the landmarks and measuring…';
+        'checking the landmarks, distances and measurements…';
       showResult(r);
     });
   state.job = null;
@@ -452,7 +452,7 @@ function buildModel() {
   g.setAttribute('position', new THREE.BufferAttribute(new Float32Array(r.fitted.vertices), 3));
   g.setIndex(r.fitted.faces);
   g.computeVertexNormals();
-  const distance = $('show-distance').checked;
+  const distance = $('show-distance').checked && r.fitted.distances_mm.length > 0;  // a re-fit's first result has none yet
   groups.scan.visible = !distance;  // the coloured model in place of the scan (no z-fighting)
   if (distance) {
     // The report's scale: 0 to the 95th percentile rounded up (server's distance_scale_mm); grey

@@ -63,7 +63,7 @@ struct RefitDeviations {
 // Returns the server time of each re-fit, ms (fit, transfer, measurements, distances): wall and
 // the thread's CPU time (the work is single-threaded: CPU time is the wall time without the
 // machine's other load); `first_ms` and `first_cpu_ms` the same to the re-fit's first result (the
-// fitted model, drawings and distances the page shows before the landmark checks and measurements:
+// fitted model and drawings the page shows before the landmark checks, distances and measurements:
 // serve::FitOutcome::surface_ms). With `deviations` (--compare-cold), each re-fit is also run with the whole refine stage (a
 // session of its own, re-fitted in the same order) and fitted from scratch; `phases_ms` collects
 // the re-fits' phase times (RegisterResult::timings) by name.
@@ -223,7 +223,7 @@ void register_bench(CLI::App& app, int& exit_code) {
                   "%.1f ms CPU)\n",
                   what, all.size(), median(all), median(all_cpu), median(medians), median(cpu_medians));
       if (args->refit)
-        std::printf("re-fit's first result (the fitted model, drawings and distances; the landmark checks and "
+        std::printf("re-fit's first result (the fitted model and drawings; the landmark checks, distances and "
                     "measurements follow), median of all %zu: %.1f ms wall, %.1f ms CPU\n",
                     all_first.size(), median(all_first), median(all_first_cpu));
       if (!phases_ms.empty()) {

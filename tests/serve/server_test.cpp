@@ -469,8 +469,8 @@ TEST(Server, StreamsTheJobsProgressAndEnd) {
   EXPECT_GE(events.back().second["iterations"].get<int>(), last_iterations);
 }
 
-// A re-fit's stream: progress, then a "result" event with the fitted model, drawings and distances
-// (complete false, no measurements yet), then the end with the whole result of the same re-fit.
+// A re-fit's stream: progress, then a "result" event with the fitted model and drawings (complete
+// false, no distances and measurements yet), then the end with the whole result of the same re-fit.
 TEST(Server, StreamsARefitsFirstResultBeforeItsEnd) {
   ServerOptions o;
   o.fit_options.refit.max_iterations = 20;  // long enough for the stream to see it run
@@ -502,6 +502,8 @@ TEST(Server, StreamsARefitsFirstResultBeforeItsEnd) {
   EXPECT_LE(first["surface_ms"].get<double>(), whole["server_ms"].get<double>());
   EXPECT_EQ(first["surface_ms"], whole["surface_ms"]);
   EXPECT_TRUE(first["landmark_checks"].empty());
+  EXPECT_TRUE(first["fitted"]["distances_mm"].empty());
+  EXPECT_FALSE(whole["fitted"]["distances_mm"].empty());
   EXPECT_FALSE(whole["landmark_checks"].empty());
   EXPECT_EQ(events[k + 1].second["state"], "done");
 }

@@ -165,19 +165,16 @@ RegisterResult register_prepared(const RegisterRequest& req, PreparedTarget& tar
       }
     });
   } else {
-    // What the user needs at once: the drawings and the distances, then the rest.
-    run_in_order(2, threads, [&](std::size_t task) {
-      if (task == 0)
-        transfer_drawings();
-      else
-        out.coverage = metrics::surface_coverage(out.fitted_mm, scan, coverage_options, &faces);
-    });
-    out.drawings_mm = transfer::to_markups(out.drawings_on_scan);
-    out.surface = out.coverage.stats();
+    // What the user needs at once: the fitted model and the drawings; then the rest.
+    transfer_drawings();
     if (on_surface) {
+      out.drawings_mm = transfer::to_markups(out.drawings_on_scan);
       out.complete = false;
       collect_warnings();
+      PreparedScan kept = std::move(out.scan);  // not copied for the first result
+      out.scan = PreparedScan{};
       on_surface(out);
+      out.scan = std::move(kept);
       out.complete = true;
     }
     fit::FitOptions one_thread = options;  // each task on its own thread
@@ -186,7 +183,10 @@ RegisterResult register_prepared(const RegisterRequest& req, PreparedTarget& tar
       switch (task) {
         case 0: fit::check_refit(model, scan, one_thread, out.fit); break;  // the longest
         case 1: measure_breasts(1); break;
-        default: cover_model_only(); break;
+        default:
+          out.coverage = metrics::surface_coverage(out.fitted_mm, scan, coverage_options, &faces);
+          cover_model_only();
+          break;
       }
     });
     for (size_t k = fit_phases; k < out.fit.summary.timings.size(); ++k) out.timings.push_back(out.fit.summary.timings[k]);

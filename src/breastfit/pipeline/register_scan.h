@@ -71,8 +71,8 @@ struct RegisterResult {
   std::vector<fit::PhaseTime> timings;
   std::optional<Provenance> provenance;  ///< RegisterRequest::provenance with the effective options
   /// false: a warm re-fit's first result (register_prepared's `on_surface`): the fitted model, its
-  /// landmarks and their errors, the drawings and the distances, without the landmark checks and
-  /// their warnings, the breast measurements, the model-only surface error and the plausibility.
+  /// landmarks and their errors, the drawings, without the landmark checks and their warnings, the
+  /// distances to the scan (coverage, surface errors), the breast measurements and the plausibility.
   bool complete = true;
 
   bool usable() const { return fit.summary.usable(); }
@@ -102,16 +102,16 @@ struct PreparedTarget {
 PreparedTarget prepare_target(const TriangleMesh& scan, const std::string& scan_name,
                               std::optional<mesh::Units> units, const fit::FitOptions& options = {});
 
-/// Sees a warm re-fit's first result (RegisterResult::complete false), on the fitting thread,
-/// before the rest is computed.
+/// Sees a warm re-fit's first result (RegisterResult::complete false; its `scan` empty), on the
+/// fitting thread, before the rest is computed.
 using SurfaceCallback = std::function<void(const RegisterResult&)>;
 
 /// register_scan on a prepared scan: `request.scan` and `request.units` are not used (the
 /// target's are). The target's normal sign is set by the fit: one fit per target at a time.
 /// result.time_s is the fit's own time (the index was built before); timings start with the
-/// target's. A warm re-fit (request.warm_start) runs in two parts: the fitted model, drawings and
-/// distances first (`on_surface` sees them), then the landmark checks (fit::check_refit) and the
-/// breast measurements; the result is the same with or without `on_surface`.
+/// target's. A warm re-fit (request.warm_start) runs in two parts: the fitted model and the
+/// drawings first (`on_surface` sees them), then the landmark checks (fit::check_refit), the
+/// distances and the breast measurements; the result is the same with or without `on_surface`.
 /// \throws as register_scan.
 RegisterResult register_prepared(const RegisterRequest& request, PreparedTarget& target,
                                  const fit::IterationCallback& on_iteration = {},

@@ -37,8 +37,8 @@ struct FitOutcome {
   /// The same work's CPU time on its (single) thread: what server_ms is on an idle machine, and
   /// independent of other processes' load.
   double server_cpu_ms = 0;
-  /// When the fitted model, its drawings and distances were ready: a warm re-fit sends them
-  /// before its landmark checks and breast measurements (ScanSession::start_fit); the same as
+  /// When the fitted model and its drawings were ready: a warm re-fit sends them before its
+  /// landmark checks, distances and breast measurements (ScanSession::start_fit); the same as
   /// server_ms / server_cpu_ms for a fit from scratch.
   double surface_ms = 0;
   double surface_cpu_ms = 0;         ///< the same work's CPU time on the request's thread
@@ -70,7 +70,7 @@ struct FitStatus {
   std::string message;          ///< the failure's or cancellation's reason, or the verdict
   std::shared_ptr<const FitOutcome> outcome;  ///< the last finished fit (may be older than state)
   /// The running or last fit's first result when it is a warm re-fit (FitOutcome::complete false:
-  /// the fitted model, drawings and distances, before the landmark checks and measurements); null
+  /// the fitted model and drawings, before the landmark checks, distances and measurements); null
   /// before it is ready and for a fit from scratch.
   std::shared_ptr<const FitOutcome> first;
   std::shared_ptr<const SuggestOutcome> suggestion;  ///< the last finished suggestion

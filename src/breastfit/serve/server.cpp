@@ -356,7 +356,7 @@ struct Server::Impl {
 
     // The scan's job (fit, re-fit or suggestion) as Server-Sent Events: "progress" events (job,
     // stage, iterations; at most one per 50 ms) while it runs, a "result" event with the whole
-    // status and a re-fit's first result as its result (the fitted model, drawings and distances:
+    // status and a re-fit's first result as its result (the fitted model and drawings, no distances:
     // "complete" false) when the stream saw the job run, then one "end" event with the whole status
     // (result and suggestion included), and the stream ends. It also ends when the
     // server stops (Ctrl-C never waits for a page) or the page goes away (a comment line every
