@@ -388,6 +388,7 @@ async function fit() {
   const st = await watchJob((p) => { $('progress').textContent = `Fitting: stage ${p.stage || '…'}, iteration ${p.iterations}`; },
     (first) => {
       const r = first.result;
+      state.firstShown = r.generation;
       $('progress').textContent = `Re-fit #${r.generation}: model and drawings in ${(r.surface_ms / 1000).toFixed(2)} s; ` +
         'checking the landmarks, distances and measurements…';
       showResult(r);
@@ -681,7 +682,7 @@ window.breastfitTest = {
     const r = canvas.getBoundingClientRect();
     return { x: r.left + (v.x + 1) / 2 * r.width, y: r.top + (1 - v.y) / 2 * r.height };
   },
-  state: () => ({ scanId: state.scanId, textured: !!texturedMesh && texturedMesh.visible, landmarks: state.landmarks, selected: state.selected, suggested: state.suggested,
+  state: () => ({ scanId: state.scanId, firstShown: state.firstShown, textured: !!texturedMesh && texturedMesh.visible, landmarks: state.landmarks, selected: state.selected, suggested: state.suggested,
     job: state.job, fitRunning: state.job === 'fit', result: state.result && { generation: state.result.generation, warm: state.result.warm,
       usable: state.result.usable, server_ms: state.result.server_ms, surface_ms: state.result.surface_ms,
       complete: state.result.complete, drawings: state.result.drawings.map((d) => ({ name: d.name, colour: d.colour })) } }),
