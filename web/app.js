@@ -360,11 +360,13 @@ function landmarkList() {
 }
 
 // Follows the scan's running job (fit or suggest) through the server's event stream until it
-// ends; resolves to its final status (null when the connection was lost).
-function watchJob(onProgress) {
+// ends; resolves to its final status (null when the connection was lost). `onResult` sees a
+// re-fit's first result (the fitted model and drawings) while the job still runs.
+function watchJob(onProgress, onResult = () => {}) {
   return new Promise((resolve) => {
     const events = new EventSource(`/api/scans/${state.scanId}/events`);
     events.addEventListener('progress', (e) => onProgress(JSON.parse(e.data)));
+    events.addEventListener('result', (e) => onResult(JSON.parse(e.data)));
     events.addEventListener('end', (e) => { events.close(); resolve(JSON.parse(e.data)); });
     events.onerror = () => {
       events.close();
@@ -383,12 +385,19 @@ async function fit() {
   state.moved = false;
   updateButtons();
   $('progress').textContent = warm ? 'Re-fitting from the previous fit…' : 'Fitting…';
-  const st = await watchJob((p) => { $('progress').textContent = `Fitting: stage ${p.stage || '…'}, iteration ${p.iterations}`; });
+  const st = await watchJob((p) => { $('progress').textContent = `Fitting: stage ${p.stage || '…'}, iteration ${p.iterations}`; },
+    (first) => {
+      const r = first.result;
+      state.firstShown = r.generation;
+      $('progress').textContent = `Re-fit #${r.generation}: model and drawings in ${(r.surface_ms / 1000).toFixed(2)} s; ` +
+        'checking the landmarks, distances and measurements…';
+      showResult(r);
+    });
   state.job = null;
   if (st && st.state === 'done') {
     const r = st.result;
     $('progress').textContent = `${r.warm ? 'Re-fit' : 'Fit'} #${r.generation} done in ${(r.server_ms / 1000).toFixed(2)} s` +
-      (r.warm ? '' : '. To correct a landmark: drag it, then Re-fit.');
+      (r.warm ? ` (model and drawings in ${(r.surface_ms / 1000).toFixed(2)} s)` : '. To correct a landmark: drag it, then Re-fit.');
     showResult(r);
     refreshMapSources();
   } else if (st) {
@@ -444,7 +453,7 @@ function buildModel() {
   g.setAttribute('position', new THREE.BufferAttribute(new Float32Array(r.fitted.vertices), 3));
   g.setIndex(r.fitted.faces);
   g.computeVertexNormals();
-  const distance = $('show-distance').checked;
+  const distance = $('show-distance').checked && r.fitted.distances_mm.length > 0;  // a re-fit's first result has none yet
   groups.scan.visible = !distance;  // the coloured model in place of the scan (no z-fighting)
   if (distance) {
     // The report's scale: 0 to the 95th percentile rounded up (server's distance_scale_mm); grey
@@ -522,6 +531,13 @@ function showResult(r) {
     const li = document.createElement('li');
     li.textContent = w;
     $('warnings').appendChild(li);
+  }
+  if (r.complete === false) {  // a re-fit's first result: the measurements follow
+    $('measurements').innerHTML = '<tr><td>measuring…</td></tr>';
+    buildModel();
+    buildDrawings();
+    rebuildLandmarks();
+    return;
   }
   const b = r.breasts;
   const rows = [['', 'right', 'left']];
@@ -666,9 +682,10 @@ window.breastfitTest = {
     const r = canvas.getBoundingClientRect();
     return { x: r.left + (v.x + 1) / 2 * r.width, y: r.top + (1 - v.y) / 2 * r.height };
   },
-  state: () => ({ scanId: state.scanId, textured: !!texturedMesh && texturedMesh.visible, landmarks: state.landmarks, selected: state.selected, suggested: state.suggested,
+  state: () => ({ scanId: state.scanId, firstShown: state.firstShown, textured: !!texturedMesh && texturedMesh.visible, landmarks: state.landmarks, selected: state.selected, suggested: state.suggested,
     job: state.job, fitRunning: state.job === 'fit', result: state.result && { generation: state.result.generation, warm: state.result.warm,
-      usable: state.result.usable, server_ms: state.result.server_ms, drawings: state.result.drawings.map((d) => ({ name: d.name, colour: d.colour })) } }),
+      usable: state.result.usable, server_ms: state.result.server_ms, surface_ms: state.result.surface_ms,
+      complete: state.result.complete, drawings: state.result.drawings.map((d) => ({ name: d.name, colour: d.colour })) } }),
   setView,
 };
 

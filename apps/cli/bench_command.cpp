@@ -62,12 +62,15 @@ struct RefitDeviations {
 // y or z.
 // Returns the server time of each re-fit, ms (fit, transfer, measurements, distances): wall and
 // the thread's CPU time (the work is single-threaded: CPU time is the wall time without the
-// machine's other load). With `deviations` (--compare-cold), each re-fit is also run with the whole refine stage (a
+// machine's other load); `first_ms` and `first_cpu_ms` the same to the re-fit's first result (the
+// fitted model and drawings the page shows before the landmark checks, distances and measurements:
+// serve::FitOutcome::surface_ms). With `deviations` (--compare-cold), each re-fit is also run with the whole refine stage (a
 // session of its own, re-fitted in the same order) and fitted from scratch; `phases_ms` collects
 // the re-fits' phase times (RegisterResult::timings) by name.
 std::vector<double> time_refits(const std::filesystem::path& dir, const std::shared_ptr<const model::RiggedModel>& model,
                                 const fit::FitOptions& options, int repeat, double move_mm, bool& usable,
-                                std::vector<double>& cpu_ms, std::map<std::string, std::vector<double>>& phases_ms,
+                                std::vector<double>& cpu_ms, std::vector<double>& first_ms, std::vector<double>& first_cpu_ms,
+                                std::map<std::string, std::vector<double>>& phases_ms,
                                 std::vector<double>& iterations, RefitDeviations* deviations) {
   const std::string scan_name = (dir / "scan.ply").string();
   serve::ScanSession session("bench", dir / "scan.ply", scan_name, model, options);
@@ -93,6 +96,8 @@ std::vector<double> time_refits(const std::filesystem::path& dir, const std::sha
     usable = usable && outcome->result.usable();
     ms.push_back(outcome->server_ms);
     cpu_ms.push_back(outcome->server_cpu_ms);
+    first_ms.push_back(outcome->surface_ms);
+    first_cpu_ms.push_back(outcome->surface_cpu_ms);
     iterations.push_back(static_cast<double>(outcome->result.fit.summary.iterations.size()));
     for (const auto& p : outcome->result.timings)
       if (p.phase != "scan_preparation" && p.phase != "index_build") phases_ms[p.phase].push_back(1000 * p.seconds);
@@ -184,7 +189,7 @@ void register_bench(CLI::App& app, int& exit_code) {
     if (args->refit || args->suggest) {
       const std::string job = args->suggest ? "suggest" : "refit";
       if (args->compare_cold && !args->refit) throw InvalidInput("bench: --compare-cold needs --refit");
-      std::vector<double> all, all_cpu, cpu_medians;
+      std::vector<double> all, all_cpu, cpu_medians, all_first, all_first_cpu;
       std::map<std::string, std::vector<double>> phases_ms;
       std::vector<double> iterations;
       RefitDeviations deviations;
@@ -192,11 +197,13 @@ void register_bench(CLI::App& app, int& exit_code) {
                   "status");
       for (const auto& dir : experiments::find_case_dirs(args->dir)) {
         bool usable = false;
-        std::vector<double> cpu;
+        std::vector<double> cpu, first, first_cpu;
         const std::vector<double> ms =
             args->suggest ? time_suggests(dir, model, options, args->repeat, usable, cpu)
-                          : time_refits(dir, model, options, args->repeat, args->refit_mm, usable, cpu, phases_ms,
-                                        iterations, args->compare_cold ? &deviations : nullptr);
+                          : time_refits(dir, model, options, args->repeat, args->refit_mm, usable, cpu, first,
+                                        first_cpu, phases_ms, iterations, args->compare_cold ? &deviations : nullptr);
+        all_first.insert(all_first.end(), first.begin(), first.end());
+        all_first_cpu.insert(all_first_cpu.end(), first_cpu.begin(), first_cpu.end());
         all.insert(all.end(), ms.begin(), ms.end());
         all_cpu.insert(all_cpu.end(), cpu.begin(), cpu.end());
         medians.push_back(median(ms));
@@ -205,12 +212,20 @@ void register_bench(CLI::App& app, int& exit_code) {
                     ms.empty() ? 0.0 : *std::max_element(ms.begin(), ms.end()), median(cpu), usable ? "ok" : "FAILED");
         cases.push_back({{"case", dir.filename().string()}, {job + "_ms_median", median(ms)}, {job + "_ms_all", ms},
                          {job + "_cpu_ms_median", median(cpu)}, {job + "_cpu_ms_all", cpu}, {"usable", usable}});
+        if (args->refit) {
+          cases.back()["first_result_ms_all"] = first;
+          cases.back()["first_result_cpu_ms_all"] = first_cpu;
+        }
       }
       char what[64] = "suggest";
       if (!args->suggest) std::snprintf(what, sizeof what, "re-fit after a %.1f mm move", args->refit_mm);
       std::printf("%s, median of all %zu: %.1f ms wall, %.1f ms CPU (median of the case medians: %.1f ms wall, "
                   "%.1f ms CPU)\n",
                   what, all.size(), median(all), median(all_cpu), median(medians), median(cpu_medians));
+      if (args->refit)
+        std::printf("re-fit's first result (the fitted model and drawings; the landmark checks, distances and "
+                    "measurements follow), median of all %zu: %.1f ms wall, %.1f ms CPU\n",
+                    all_first.size(), median(all_first), median(all_first_cpu));
       if (!phases_ms.empty()) {
         std::printf("re-fits: median %.1f iterations; phases (median ms, wall):", median(iterations));
         for (const auto& [phase, v] : phases_ms) std::printf(" %s %.1f", phase.c_str(), median(v));
@@ -225,7 +240,11 @@ void register_bench(CLI::App& app, int& exit_code) {
         if (!f) throw IoError(args->json_out, "cannot open for writing");
         nlohmann::json j{{"cases", cases}, {"median_" + job + "_ms", median(all)}, {"median_" + job + "_cpu_ms", median(all_cpu)},
                          {"repeat", args->repeat}};
-        if (args->refit) j["move_mm"] = args->refit_mm;
+        if (args->refit) {
+          j["move_mm"] = args->refit_mm;
+          j["median_first_result_ms"] = median(all_first);
+          j["median_first_result_cpu_ms"] = median(all_first_cpu);
+        }
         f << j.dump(1) << "\n";
       }
       return;

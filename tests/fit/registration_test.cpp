@@ -126,9 +126,8 @@ TEST(Registration, WarmRefitStartsFromTheGivenParametersAndRunsOnlyRefine) {
   EXPECT_THROW(refit_template(m, scan, lms, o, other), InvalidInput);
 }
 
-// A re-fit's landmark predictions run beside its final state and surface detail with 2 threads
-// (on a problem of their own), one after the other with 1: the same re-fit, bit for bit, with its
-// checks (predictions included) and warnings.
+// A re-fit with 1 and 2 threads (the correspondences and the assembly in chunks): the same re-fit,
+// bit for bit, with its checks (predictions included) and warnings.
 TEST(Registration, WarmRefitIsTheSameWithOneAndTwoThreads) {
   const test::ToyScanCase c(31, 0.4);
   ScanTarget scan(c.mesh, 300);
@@ -161,6 +160,48 @@ TEST(Registration, WarmRefitIsTheSameWithOneAndTwoThreads) {
     EXPECT_EQ(b.anatomy_distance_mm, a.anatomy_distance_mm) << a.name;
     EXPECT_EQ(b.flagged, a.flagged) << a.name;
     EXPECT_EQ(b.factor, a.factor) << a.name;
+  }
+}
+
+// The workstation's re-fit in two parts: refit_surface (what the page shows at once: no landmark
+// checks yet), then check_refit. Both start from a fit's final correspondences instead of
+// searching them again: the same re-fit and checks, bit for bit, as with searches, with 1 and 2
+// threads.
+TEST(Registration, WarmRefitInTwoPartsFromTheFinalPairsIsTheSearchedOne) {
+  const test::ToyScanCase c(31, 0.4);
+  ScanTarget scan(c.mesh, 300);
+  FitOptions o;
+  o.nipple_tip_check_mm = 1e3;  // the toy's breasts have no tip to check (landmark_check_test)
+  auto named = c.named_landmarks();
+  const FitResult full = register_template(c.m, scan, match_landmarks(c.m, named), o);
+  ASSERT_TRUE(full.summary.usable()) << full.summary.message;
+  ASSERT_NE(full.final_correspondences, nullptr);
+  named[1].second.x() += 10.0;
+  const auto moved = match_landmarks(c.m, named);
+  for (int threads : {1, 2}) {
+    o.threads = threads;
+    FitResult searched = refit_surface(c.m, scan, moved, o, full.params);
+    FitResult seeded = refit_surface(c.m, scan, moved, o, full.params, {}, full.final_correspondences.get());
+    EXPECT_TRUE(seeded.summary.landmark_checks.empty());  // they follow
+    EXPECT_EQ(seeded.landmarks.size(), moved.size());
+    EXPECT_EQ(seeded.vertices, searched.vertices) << threads;
+    EXPECT_EQ(seeded.params.alpha, searched.params.alpha) << threads;
+    EXPECT_EQ(seeded.summary.iterations.size(), searched.summary.iterations.size());
+    ASSERT_NE(seeded.final_correspondences, nullptr);
+    searched.final_correspondences.reset();  // its checks search their pairs
+    check_refit(c.m, scan, o, searched);
+    check_refit(c.m, scan, o, seeded);
+    ASSERT_EQ(seeded.summary.landmark_checks.size(), moved.size());
+    int predicted = 0;
+    for (size_t i = 0; i < moved.size(); ++i) {
+      const auto &a = searched.summary.landmark_checks[i], &b = seeded.summary.landmark_checks[i];
+      EXPECT_EQ(b.predicted_distance_mm, a.predicted_distance_mm) << a.name;
+      EXPECT_EQ(b.flagged, a.flagged) << a.name;
+      predicted += b.predicted_tolerance_mm > 0;
+    }
+    EXPECT_EQ(predicted, static_cast<int>(moved.size()));  // the predictions ran
+    EXPECT_EQ(seeded.summary.warnings, searched.summary.warnings) << threads;
+    EXPECT_EQ(seeded.summary.timings.back().phase, "landmark_checks");
   }
 }
 

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "breastfit/core/errors.h"
 #include "breastfit/io/io.h"
 #include "breastfit/pipeline/fit_deviation.h"
@@ -82,8 +84,8 @@ TEST(ScanSession, FastRefitStaysAsCloseToTheColdFitAsTheWholeRefine) {
   EXPECT_LE(pipeline::fit_deviation(fast->result, full_refine->result).surface_median_mm, 0.5);
 }
 
-// A re-fit is the same with 1 and 2 threads (its landmark predictions beside its final state,
-// the two breasts' volumes side by side), and the session's breast-volume cache, warm from the
+// A re-fit is the same with 1 and 2 threads (its drawings beside its distances, then its landmark
+// checks beside the breast volumes), and the session's breast-volume cache, warm from the
 // first fit, changes nothing: the volumes are those measured without a cache.
 TEST(ScanSession, RefitIsTheSameWithOneAndTwoThreads) {
   fit::FitOptions one, two;
@@ -115,6 +117,49 @@ TEST(ScanSession, RefitIsTheSameWithOneAndTwoThreads) {
   ASSERT_EQ(rb.drawings_on_scan.size(), ra.drawings_on_scan.size());
   for (size_t i = 0; i < ra.drawings_on_scan.size(); ++i)
     EXPECT_EQ(rb.drawings_on_scan[i].points, ra.drawings_on_scan[i].points) << ra.drawings_on_scan[i].name;
+}
+
+// A re-fit's first result (what the page shows at once): the fitted model and drawings of the
+// whole re-fit, without the landmark checks, distances and breast measurements, which follow; the
+// whole outcome is the same as a re-fit without a first result. A fit from scratch has none.
+TEST(ScanSession, RefitShowsTheModelAndDrawingsFirst) {
+  ScanSession s("1", the_case().scan, "scan.ply", test::default_template());
+  ScanSession plain("2", the_case().scan, "scan.ply", test::default_template());
+  std::vector<std::shared_ptr<const FitOutcome>> firsts;
+  auto keep = [&](std::shared_ptr<const FitOutcome> f) { firsts.push_back(std::move(f)); };
+  ASSERT_TRUE(s.run_fit(the_case().landmarks, false, keep)->result.usable());
+  ASSERT_TRUE(plain.run_fit(the_case().landmarks, false)->result.usable());
+  EXPECT_TRUE(firsts.empty());
+  LandmarkSet moved = the_case().landmarks;
+  moved.points[3].position.x() += 10.0;
+  const auto whole = s.run_fit(moved, true, keep);
+  const auto reference = plain.run_fit(moved, true);
+  ASSERT_EQ(firsts.size(), 1u);
+  const FitOutcome& first = *firsts[0];
+  EXPECT_FALSE(first.complete);
+  EXPECT_TRUE(whole->complete);
+  EXPECT_EQ(first.generation, whole->generation);
+  EXPECT_TRUE(first.warm);
+  EXPECT_LE(first.surface_ms, whole->server_ms);
+  EXPECT_EQ(first.surface_ms, whole->surface_ms);
+  EXPECT_EQ(first.result.fit.vertices, whole->result.fit.vertices);
+  EXPECT_EQ(first.result.model_landmarks_mm.points.size(), whole->result.model_landmarks_mm.points.size());
+  ASSERT_EQ(first.result.drawings_on_scan.size(), whole->result.drawings_on_scan.size());
+  for (size_t i = 0; i < first.result.drawings_on_scan.size(); ++i)
+    EXPECT_EQ(first.result.drawings_on_scan[i].points, whole->result.drawings_on_scan[i].points);
+  EXPECT_TRUE(first.distances_mm.empty());  // they follow
+  EXPECT_EQ(whole->distances_mm.size(), static_cast<size_t>(whole->result.fit.vertices.rows()));
+  EXPECT_EQ(first.result.scan.mesh_mm.V.rows(), 0);  // not copied
+  EXPECT_TRUE(first.result.fit.summary.landmark_checks.empty());  // they follow
+  EXPECT_FALSE(first.result.breasts.right.volume_ml.has_value());
+  EXPECT_EQ(whole->result.fit.summary.landmark_checks.size(), moved.points.size());
+  // The same whole outcome as without a first result.
+  EXPECT_EQ(whole->result.fit.vertices, reference->result.fit.vertices);
+  EXPECT_EQ(whole->result.warnings, reference->result.warnings);
+  EXPECT_EQ(whole->result.breasts.right.volume_ml, reference->result.breasts.right.volume_ml);
+  EXPECT_EQ(whole->result.breasts.left.volume_ml, reference->result.breasts.left.volume_ml);
+  EXPECT_EQ(whole->result.surface_model_only.mae, reference->result.surface_model_only.mae);
+  EXPECT_EQ(whole->result.status(), reference->result.status());
 }
 
 TEST(ScanSession, OneFitAtATimeAndCancel) {

@@ -469,6 +469,45 @@ TEST(Server, StreamsTheJobsProgressAndEnd) {
   EXPECT_GE(events.back().second["iterations"].get<int>(), last_iterations);
 }
 
+// A re-fit's stream: progress, then a "result" event with the fitted model and drawings (complete
+// false, no distances and measurements yet), then the end with the whole result of the same re-fit.
+TEST(Server, StreamsARefitsFirstResultBeforeItsEnd) {
+  ServerOptions o;
+  o.fit_options.refit.max_iterations = 20;  // long enough for the stream to see it run
+  o.fit_options.refit.vertex_tolerance_mm = 0;
+  RunningServer s(o);
+  auto c = s.client();
+  const std::string id = open_scan(c, "cases/a/scan.ply");
+  const std::string fit = "/api/scans/" + id + "/fit";
+  ASSERT_EQ(c.Post(fit.c_str(), json{{"landmarks", landmarks_json()}}.dump(), "application/json")->status, 202);
+  ASSERT_EQ(wait_fit(c, id)["state"], "done");
+  json moved = landmarks_json();
+  moved[2]["position"][0] = moved[2]["position"][0].get<double>() + 10.0;
+  ASSERT_EQ(c.Post(fit.c_str(), json{{"landmarks", moved}, {"warm", true}}.dump(), "application/json")->status, 202);
+  const auto events = read_events(c, id);
+  ASSERT_GE(events.size(), 2u);
+  size_t k = 0;
+  while (k < events.size() && events[k].first == "progress") ++k;
+  ASSERT_LT(k + 1, events.size());
+  ASSERT_EQ(events[k].first, "result");
+  const json& first = events[k].second["result"];
+  ASSERT_EQ(events[k + 1].first, "end");
+  const json& whole = events[k + 1].second["result"];
+  EXPECT_FALSE(first["complete"].get<bool>());
+  EXPECT_TRUE(whole["complete"].get<bool>());
+  EXPECT_TRUE(whole["warm"].get<bool>());
+  EXPECT_EQ(first["generation"], whole["generation"]);
+  EXPECT_EQ(first["fitted"]["vertices"], whole["fitted"]["vertices"]);
+  EXPECT_EQ(first["drawings"], whole["drawings"]);
+  EXPECT_LE(first["surface_ms"].get<double>(), whole["server_ms"].get<double>());
+  EXPECT_EQ(first["surface_ms"], whole["surface_ms"]);
+  EXPECT_TRUE(first["landmark_checks"].empty());
+  EXPECT_TRUE(first["fitted"]["distances_mm"].empty());
+  EXPECT_FALSE(whole["fitted"]["distances_mm"].empty());
+  EXPECT_FALSE(whole["landmark_checks"].empty());
+  EXPECT_EQ(events[k + 1].second["state"], "done");
+}
+
 // Cancel while the page listens: the stream ends with the cancellation. Stopping the server (as
 // Ctrl-C does) with a stream open returns at once.
 TEST(Server, CancelWhileStreamingAndStopWithAStreamOpen) {

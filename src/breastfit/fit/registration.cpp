@@ -7,7 +7,6 @@
 #include <set>
 
 #include "breastfit/core/errors.h"
-#include "breastfit/core/task_queue.h"
 #include "breastfit/core/timer.h"
 #include "breastfit/fit/bilateral_check.h"
 #include "breastfit/fit/breast_fold.h"
@@ -603,51 +602,66 @@ FitResult register_template(const model::RiggedModel& model, ScanTarget& scan, s
   return result;
 }
 
-FitResult refit_template(const model::RiggedModel& model, ScanTarget& scan, std::vector<LandmarkTarget> landmarks,
-                         const FitOptions& options, const model::PoseParams& start,
-                         const IterationCallback& on_iteration) {
-  options.validate();
-  if (start.bones.size() != model.bones.size() || start.alpha.size() != static_cast<Eigen::Index>(model.blendshapes.size()))
-    throw InvalidInput("warm start: the parameters are not those of template '" + model.name + "'");
-  Timer timer, phase;
-  FitResult result;
-  FitSummary& summary = result.summary;
-  if (!options.use_landmarks) landmarks.clear();
-  summary.initialization = "warm start";
-  summary.landmarks_used = static_cast<int>(landmarks.size());
-  model::PoseParams params = start;
-  // The re-fit's own schedule (RefitOptions): outlives the problem, which keeps a reference.
+namespace {
+
+// The re-fit's own schedule (RefitOptions) on top of `options`.
+FitOptions refit_options(const FitOptions& options) {
   FitOptions warm = options;
   if (options.refit.final_threshold) warm.correspondences.max_distance_start_mm = options.correspondences.max_distance_end_mm;
   warm.refine.max_iterations = options.refit.max_iterations;
   warm.solver.vertex_tolerance_mm = std::max(options.solver.vertex_tolerance_mm, options.refit.vertex_tolerance_mm);
-  auto problem = std::make_unique<Problem>(model, scan, warm, landmarks);
-  problem->evaluator().set_params(params);
+  return warm;
+}
+
+}  // namespace
+
+FitResult refit_surface(const model::RiggedModel& model, ScanTarget& scan, std::vector<LandmarkTarget> landmarks,
+                        const FitOptions& options, const model::PoseParams& start,
+                        const IterationCallback& on_iteration, const Problem::CorrespondenceState* start_correspondences) {
+  options.validate();
+  if (start.bones.size() != model.bones.size() || start.alpha.size() != static_cast<Eigen::Index>(model.blendshapes.size()))
+    throw InvalidInput("warm start: the parameters are not those of template '" + model.name + "'");
+  if (!options.use_landmarks) landmarks.clear();
+  Timer timer, phase;
+  FitResult result;
+  FitSummary& summary = result.summary;
+  summary.initialization = "warm start";
+  summary.landmarks_used = static_cast<int>(landmarks.size());
+  model::PoseParams params = start;
+  const FitOptions warm = refit_options(options);  // outlives the problem, which keeps a reference
+  Problem problem(model, scan, warm, landmarks);
+  problem.evaluator().set_params(params);
+  if (start_correspondences) problem.restore_correspondences(*start_correspondences);
   summary.timings.push_back({"initialization", phase.seconds()});
-  summary.termination = minimize_stages(*problem, {warm.refine}, params, summary, on_iteration);
-  // A re-fit's landmark check only reports (hold_off_misplaced without its refit): its
-  // predictions need the fitted parameters alone. With 2 threads they run on a problem of their
-  // own (the same pairs and terms at the same parameters) beside the final state and the surface
-  // detail, each of the two on one thread; with 1 thread one after the other. The same result.
-  PlacedCheck placed;
-  if (resolve_threads(options.threads) >= 2) {
-    warm.threads = 1;  // the problem's options: both tasks' searches on their own thread
-    FitSummary read_only = summary;  // the predictions read it while the other task writes it
-    run_in_order(2, 2, [&](std::size_t task) {
-      if (task == 0) {
-        auto own = std::make_unique<Problem>(model, scan, warm, landmarks);
-        model::PoseParams at = params;
-        placed = hold_off_misplaced(model, scan, own, at, landmarks, warm, read_only, on_iteration, false);
-      } else {
-        finish_surface(model, scan, *problem, params, warm, result);
-      }
-    });
-  } else {
-    placed = hold_off_misplaced(model, scan, problem, params, landmarks, warm, summary, on_iteration, false);
-    finish_surface(model, scan, *problem, params, warm, result);
-  }
-  finish_checks(model, landmarks, warm, placed, result);
+  summary.termination = minimize_stages(problem, {warm.refine}, params, summary, on_iteration);
+  finish_surface(model, scan, problem, params, warm, result);
+  result.landmarks = landmarks;
   summary.seconds = timer.seconds();
+  return result;
+}
+
+void check_refit(const model::RiggedModel& model, ScanTarget& scan, const FitOptions& options, FitResult& result) {
+  Timer phase;
+  const FitOptions warm = refit_options(options);
+  const std::vector<LandmarkTarget> landmarks = result.landmarks;
+  // A re-fit's landmark check only reports (hold_off_misplaced without its refit): its predictions
+  // need the fitted parameters alone, on a problem of their own (the same terms at the same
+  // parameters as the re-fit's), from the final state's pairs (the same, not searched again).
+  auto own = std::make_unique<Problem>(model, scan, warm, landmarks);
+  if (result.final_correspondences) own->restore_correspondences(*result.final_correspondences);
+  model::PoseParams at = result.params;
+  FitSummary read_only = result.summary;
+  const PlacedCheck placed = hold_off_misplaced(model, scan, own, at, landmarks, warm, read_only, {}, false);
+  finish_checks(model, landmarks, warm, placed, result);
+  result.summary.timings.push_back({"landmark_checks", phase.seconds()});
+  result.summary.seconds += phase.seconds();
+}
+
+FitResult refit_template(const model::RiggedModel& model, ScanTarget& scan, std::vector<LandmarkTarget> landmarks,
+                         const FitOptions& options, const model::PoseParams& start,
+                         const IterationCallback& on_iteration) {
+  FitResult result = refit_surface(model, scan, std::move(landmarks), options, start, on_iteration);
+  check_refit(model, scan, options, result);
   return result;
 }
 
@@ -680,6 +694,8 @@ void finish_surface(const model::RiggedModel& model, ScanTarget& scan, Problem& 
   summary.verdict = judge(options, problem, summary.termination, summary.kept_mae_mm);
   summary.message = summary.usable() ? summary.termination_message : summary.verdict.reason;
   summary.timings.push_back({"final_state", phase.seconds()});
+  if (summary.termination != Termination::Aborted && summary.termination != Termination::NumericalFailure)
+    result.final_correspondences = std::make_shared<const Problem::CorrespondenceState>(problem.correspondence_state());
 
   result.params = params;
   result.vertices = problem.evaluator().vertices();

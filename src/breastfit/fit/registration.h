@@ -10,12 +10,14 @@
 ///   if (!r.summary.usable()) { ... r.summary.message ... }
 /// \endcode
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "breastfit/fit/fit_options.h"
 #include "breastfit/fit/fit_summary.h"
 #include "breastfit/fit/landmark_target.h"
+#include "breastfit/fit/problem.h"
 #include "breastfit/fit/scan_target.h"
 #include "breastfit/fit/surface_detail.h"
 #include "breastfit/model/pose_params.h"
@@ -30,6 +32,10 @@ struct FitResult {
   Eigen::VectorXd detail_offsets;         ///< surface-detail offsets along model_vertices' normals (empty: none)
   std::vector<LandmarkTarget> landmarks;  ///< the input landmarks as used (after any L/R correction)
   FitSummary summary;
+  /// The final state's correspondences (at `params`, the final threshold; null when the fit did not
+  /// reach its final state): a re-fit from `params` finds its first ones there, and the re-fit's
+  /// landmark checks theirs (the same pairs, not searched again).
+  std::shared_ptr<const Problem::CorrespondenceState> final_correspondences;
 };
 
 
@@ -51,9 +57,27 @@ FitResult register_template(const model::RiggedModel& model, ScanTarget& scan,
 /// parameters `start` and runs only the last stage (options.refine): no initialisation, no coarse
 /// stages, no L/R swap detection. The final state, verdict, surface detail and landmark checks
 /// are those of register_template; summary.initialization is "warm start".
+/// refit_surface then check_refit (pipeline::register_prepared runs the two apart, the checks beside
+/// the breast measurements). summary.timings end with "landmark_checks".
 /// \throws InvalidInput for invalid options or parameters of another template.
 FitResult refit_template(const model::RiggedModel& model, ScanTarget& scan, std::vector<LandmarkTarget> landmarks,
                          const FitOptions& options, const model::PoseParams& start,
                          const IterationCallback& on_iteration = {});
+
+/// refit_template's first part, what the user needs at once: the refine stage from `start`, the
+/// final state, verdict and surface detail; no landmark checks (summary.landmark_checks empty,
+/// their warnings missing: check_refit adds them). result.landmarks are the landmarks as used.
+/// `start_correspondences`: the previous fit's FitResult::final_correspondences (a fit of the same
+/// scan with the same options): the first iteration's pairs when found at `start` (the same
+/// pairs as a search; null: searched). \throws InvalidInput as refit_template.
+FitResult refit_surface(const model::RiggedModel& model, ScanTarget& scan, std::vector<LandmarkTarget> landmarks,
+                        const FitOptions& options, const model::PoseParams& start,
+                        const IterationCallback& on_iteration = {},
+                        const Problem::CorrespondenceState* start_correspondences = nullptr);
+
+/// refit_template's second part on refit_surface's `result` (same model, scan and options): the
+/// landmark checks, reported only (summary.landmark_checks and their warnings; the re-fit does not
+/// hold a landmark off), and the phase "landmark_checks".
+void check_refit(const model::RiggedModel& model, ScanTarget& scan, const FitOptions& options, FitResult& result);
 
 }  // namespace breastfit::fit

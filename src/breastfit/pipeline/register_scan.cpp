@@ -54,7 +54,7 @@ RegisterResult register_scan(const RegisterRequest& req, const fit::IterationCal
 }
 
 RegisterResult register_prepared(const RegisterRequest& req, PreparedTarget& target,
-                                 const fit::IterationCallback& on_iteration) {
+                                 const fit::IterationCallback& on_iteration, const SurfaceCallback& on_surface) {
   const std::shared_ptr<const model::RiggedModel> model_ptr =
       req.model ? req.model : std::make_shared<const model::RiggedModel>(model::load_default_template());
   const model::RiggedModel& model = *model_ptr;
@@ -82,6 +82,7 @@ RegisterResult register_prepared(const RegisterRequest& req, PreparedTarget& tar
       if (!req.landmarks->find(name)) missing += std::string(missing.empty() ? "" : ", ") + std::string(name);
     out.warnings.push_back("landmarks missing (the fit uses those present): " + missing);
   }
+  const std::vector<std::string> input_warnings = out.warnings;
 
   out.timings = target.timings;
   out.timings.front().seconds += phase.seconds();  // the landmarks' preparation
@@ -92,21 +93,35 @@ RegisterResult register_prepared(const RegisterRequest& req, PreparedTarget& tar
                        " mm from the scan (median); they look " + d->mistake + ": undone, they would lie " +
                        fmt(d->corrected_median_mm) +
                        " mm from it. Check the file's coordinate system and units");
-  out.fit = req.warm_start ? fit::refit_template(model, scan, targets, options, *req.warm_start, on_iteration)
-                           : fit::register_template(model, scan, targets, options, on_iteration);
+  const bool refit = req.warm_start.has_value();
+  out.fit = refit ? fit::refit_surface(model, scan, targets, options, *req.warm_start, on_iteration,
+                                       req.warm_correspondences.get())
+                  : fit::register_template(model, scan, targets, options, on_iteration);
   out.time_s = timer.seconds();
+  const size_t fit_phases = out.fit.summary.timings.size();
   for (const auto& p : out.fit.summary.timings) out.timings.push_back(p);
   phase.reset();
 
-  for (const auto& w : out.fit.summary.warnings) out.warnings.push_back(w);
+  std::vector<std::string> far_landmarks;
   for (const auto& t : out.fit.landmarks) {
     const double d = std::sqrt(scan.closest(t.position).sq_dist);
     if (d > options.landmark_warning_mm)
-      out.warnings.push_back("landmark '" + t.name + "' is " + fmt(d) + " mm away from the scan surface");
+      far_landmarks.push_back("landmark '" + t.name + "' is " + fmt(d) + " mm away from the scan surface");
   }
+  // The warnings in their order: the input's, the fit's, the landmarks', the drawings', the plausibility's.
+  auto collect_warnings = [&] {
+    out.warnings = input_warnings;
+    for (const auto& w : out.fit.summary.warnings) out.warnings.push_back(w);
+    for (const auto& w : far_landmarks) out.warnings.push_back(w);
+    for (const auto& c : out.drawings_on_scan)
+      if (c.supported_fraction < 0.5)
+        out.warnings.push_back("drawing '" + c.name + "': only " + fmt(100 * c.supported_fraction) + " % of it is on the scan");
+    for (const auto& p : out.plausibility.problems) out.warnings.push_back("implausible fit: " + p);
+  };
   out.fitted_mm.V = out.fit.vertices;
   out.fitted_mm.F = model.rest.F;
   out.model_landmarks_mm = evaluate_landmarks(model, out.fit.vertices, out.fit.params);
+  out.landmarks = metrics::landmark_errors(model, out.fit.vertices, out.fit.params, out.fit.landmarks);
   transfer::TransferOptions transfer_options;
   transfer_options.reject_scan_border = !out.scan.was_point_cloud;
   metrics::CoverageOptions coverage_options;  // the surface error counts what the scan covers
@@ -115,48 +130,78 @@ RegisterResult register_prepared(const RegisterRequest& req, PreparedTarget& tar
   model_only.V = out.fit.model_vertices;
   model_only.F = model.rest.F;
   const bool with_detail = out.fit.detail_offsets.size() > 0;
-  // The drawings' transfer, the breasts' measurements and the surface coverages need only the
-  // fitted vertices: they run as independent tasks on the fit's threads, the longest first (each
-  // writes only its own result, so the outputs do not depend on the threads). `transfer` and
-  // `measurements:breast_volumes` are those tasks' own times, `measurements` the rest of the
-  // block's wall time.
+  // The drawings' transfer, the breasts' measurements, the surface coverages (and a re-fit's
+  // landmark checks) need only the fitted vertices: they run as independent tasks on the fit's
+  // threads, the longest first (each writes only its own result, so the outputs do not depend on
+  // the threads). `transfer`, `landmark_checks` and `measurements:breast_volumes` are those tasks'
+  // own times, `measurements` the rest of the blocks' wall time.
   double transfer_s = 0;
   double breasts_s = 0;
   metrics::SurfaceCoverage model_only_coverage;
+  std::vector<Index> faces;  // each fitted vertex's closest scan face: the model-only pass's warm starts
   const auto threads = static_cast<unsigned>(fit::resolve_threads(options.threads));
-  run_in_order(3, threads, [&](std::size_t task) {
+  auto measure_breasts = [&](unsigned breast_threads) {
     Timer own;
-    switch (task) {
-      case 0:  // the longest: its two breasts on two threads when there are two
-        out.breasts = transfer::measure_breasts(model, out.fit.vertices, {}, target.volumes.get(), std::min(threads, 2u));
-        breasts_s = own.seconds();
-        break;
-      case 1: {
-        std::vector<Index> faces;  // each vertex's closest scan face: the model-only pass's warm starts
-        out.coverage = metrics::surface_coverage(out.fitted_mm, scan, coverage_options, &faces);
-        if (with_detail) model_only_coverage = metrics::surface_coverage(model_only, scan, coverage_options, &faces);
-        break;
+    out.breasts = transfer::measure_breasts(model, out.fit.vertices, {}, target.volumes.get(), breast_threads);
+    breasts_s = own.seconds();
+  };
+  auto transfer_drawings = [&] {
+    Timer own;
+    out.drawings_on_scan = transfer::transfer_drawings(model, out.fit.vertices, scan, transfer_options);
+    transfer_s = own.seconds();
+  };
+  auto cover_model_only = [&] {
+    if (with_detail) model_only_coverage = metrics::surface_coverage(model_only, scan, coverage_options, &faces);
+  };
+  if (!refit) {
+    run_in_order(3, threads, [&](std::size_t task) {
+      switch (task) {
+        case 0: measure_breasts(std::min(threads, 2u)); break;  // the longest: its two breasts on two threads
+        case 1:
+          out.coverage = metrics::surface_coverage(out.fitted_mm, scan, coverage_options, &faces);
+          cover_model_only();
+          break;
+        default: transfer_drawings(); break;
       }
-      default:
-        out.drawings_on_scan = transfer::transfer_drawings(model, out.fit.vertices, scan, transfer_options);
-        transfer_s = own.seconds();
-        break;
+    });
+  } else {
+    // What the user needs at once: the fitted model and the drawings; then the rest.
+    transfer_drawings();
+    if (on_surface) {
+      out.drawings_mm = transfer::to_markups(out.drawings_on_scan);
+      out.complete = false;
+      collect_warnings();
+      PreparedScan kept = std::move(out.scan);  // not copied for the first result
+      out.scan = PreparedScan{};
+      on_surface(out);
+      out.scan = std::move(kept);
+      out.complete = true;
     }
-  });
+    fit::FitOptions one_thread = options;  // each task on its own thread
+    one_thread.threads = 1;
+    run_in_order(3, threads, [&](std::size_t task) {
+      switch (task) {
+        case 0: fit::check_refit(model, scan, one_thread, out.fit); break;  // the longest
+        case 1: measure_breasts(1); break;
+        default:
+          out.coverage = metrics::surface_coverage(out.fitted_mm, scan, coverage_options, &faces);
+          cover_model_only();
+          break;
+      }
+    });
+    for (size_t k = fit_phases; k < out.fit.summary.timings.size(); ++k) out.timings.push_back(out.fit.summary.timings[k]);
+  }
   out.drawings_mm = transfer::to_markups(out.drawings_on_scan);
-  for (const auto& c : out.drawings_on_scan)
-    if (c.supported_fraction < 0.5)
-      out.warnings.push_back("drawing '" + c.name + "': only " + fmt(100 * c.supported_fraction) + " % of it is on the scan");
   out.surface = out.coverage.stats();
   out.surface_model_only = with_detail ? model_only_coverage.stats() : out.surface;
-  out.landmarks = metrics::landmark_errors(model, out.fit.vertices, out.fit.params, out.fit.landmarks);
-  if (out.usable()) {
+  if (out.usable())
     out.plausibility = metrics::judge_plausibility(model, out.fit.params, out.coverage.fraction(), out.surface);
-    for (const auto& p : out.plausibility.problems) out.warnings.push_back("implausible fit: " + p);
-  }
+  collect_warnings();
+  double checks_s = 0;
+  for (size_t k = fit_phases; k < out.fit.summary.timings.size(); ++k) checks_s += out.fit.summary.timings[k].seconds;
   out.timings.push_back({"transfer", transfer_s});
-  out.timings.push_back({"measurements", std::max(0.0, phase.seconds() - transfer_s)});
-  out.timings.push_back({"measurements:breast_volumes", breasts_s});  // a task of the block above
+  out.timings.push_back({"measurements", std::max(0.0, phase.seconds() - transfer_s - checks_s)});
+  out.timings.push_back({"measurements:breast_volumes", breasts_s});  // a task of the blocks above
   return out;
 }
 

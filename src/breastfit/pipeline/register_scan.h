@@ -2,6 +2,7 @@
 /// \file The whole registration of one scan in memory: prepare the scan and landmarks, build the
 /// index, fit, and evaluate the fitted template's landmarks and drawings and the paper's errors.
 /// What `breastfit register`, `bench` and `demo` run.
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -39,6 +40,10 @@ struct RegisterRequest {
   /// A previous fit's parameters to start from (a re-fit after a landmark moved): only the last
   /// stage runs (fit::refit_template). nullopt: the full registration.
   std::optional<model::PoseParams> warm_start;
+  /// With warm_start: that fit's final correspondences (fit::FitResult::final_correspondences, a
+  /// fit of the same prepared scan with the same options): the re-fit's first ones, not searched
+  /// again (the same result). null: searched.
+  std::shared_ptr<const fit::Problem::CorrespondenceState> warm_correspondences;
 };
 
 struct RegisterResult {
@@ -65,6 +70,10 @@ struct RegisterResult {
   /// the transfer and the distances).
   std::vector<fit::PhaseTime> timings;
   std::optional<Provenance> provenance;  ///< RegisterRequest::provenance with the effective options
+  /// false: a warm re-fit's first result (register_prepared's `on_surface`): the fitted model, its
+  /// landmarks and their errors, the drawings, without the landmark checks and their warnings, the
+  /// distances to the scan (coverage, surface errors), the breast measurements and the plausibility.
+  bool complete = true;
 
   bool usable() const { return fit.summary.usable(); }
   /// "ok", "implausible" (usable, but see `plausibility`) or "not_usable" (report.json "status").
@@ -93,11 +102,19 @@ struct PreparedTarget {
 PreparedTarget prepare_target(const TriangleMesh& scan, const std::string& scan_name,
                               std::optional<mesh::Units> units, const fit::FitOptions& options = {});
 
+/// Sees a warm re-fit's first result (RegisterResult::complete false; its `scan` empty), on the
+/// fitting thread, before the rest is computed.
+using SurfaceCallback = std::function<void(const RegisterResult&)>;
+
 /// register_scan on a prepared scan: `request.scan` and `request.units` are not used (the
 /// target's are). The target's normal sign is set by the fit: one fit per target at a time.
 /// result.time_s is the fit's own time (the index was built before); timings start with the
-/// target's. \throws as register_scan.
+/// target's. A warm re-fit (request.warm_start) runs in two parts: the fitted model and the
+/// drawings first (`on_surface` sees them), then the landmark checks (fit::check_refit), the
+/// distances and the breast measurements; the result is the same with or without `on_surface`.
+/// \throws as register_scan.
 RegisterResult register_prepared(const RegisterRequest& request, PreparedTarget& target,
-                                 const fit::IterationCallback& on_iteration = {});
+                                 const fit::IterationCallback& on_iteration = {},
+                                 const SurfaceCallback& on_surface = {});
 
 }  // namespace breastfit::pipeline

@@ -37,7 +37,15 @@ struct FitOutcome {
   /// The same work's CPU time on its (single) thread: what server_ms is on an idle machine, and
   /// independent of other processes' load.
   double server_cpu_ms = 0;
+  /// When the fitted model and its drawings were ready: a warm re-fit sends them before its
+  /// landmark checks, distances and breast measurements (ScanSession::start_fit); the same as
+  /// server_ms / server_cpu_ms for a fit from scratch.
+  double surface_ms = 0;
+  double surface_cpu_ms = 0;         ///< the same work's CPU time on the request's thread
   bool warm = false;                 ///< warm-started from the previous fit
+  /// false: a warm re-fit's first result (pipeline::RegisterResult::complete), shown while the
+  /// job still runs; the job's end brings the complete one.
+  bool complete = true;
   int generation = 0;                ///< 1 for the session's first fit, then 2, 3, ...
 };
 
@@ -61,6 +69,10 @@ struct FitStatus {
   int iterations = 0;           ///< iterations so far (all stages)
   std::string message;          ///< the failure's or cancellation's reason, or the verdict
   std::shared_ptr<const FitOutcome> outcome;  ///< the last finished fit (may be older than state)
+  /// The running or last fit's first result when it is a warm re-fit (FitOutcome::complete false:
+  /// the fitted model and drawings, before the landmark checks, distances and measurements); null
+  /// before it is ready and for a fit from scratch.
+  std::shared_ptr<const FitOutcome> first;
   std::shared_ptr<const SuggestOutcome> suggestion;  ///< the last finished suggestion
   uint64_t version = 0;         ///< grows with every change of the above
 };
@@ -98,8 +110,11 @@ class ScanSession {
   /// Returns false (and starts nothing) while another job (fit or suggestion) of this scan runs.
   bool start_fit(LandmarkSet landmarks_mm, bool warm);
   /// Runs a fit on the calling thread (what start_fit's worker runs; benchmarks call it).
-  /// \throws InvalidInput for bad landmarks
-  std::shared_ptr<const FitOutcome> run_fit(const LandmarkSet& landmarks_mm, bool warm);
+  /// `on_surface` sees a warm re-fit's first result (FitOutcome::complete false) before the rest
+  /// is computed. \throws InvalidInput for bad landmarks
+  std::shared_ptr<const FitOutcome> run_fit(
+      const LandmarkSet& landmarks_mm, bool warm,
+      const std::function<void(std::shared_ptr<const FitOutcome>)>& on_surface = {});
   /// Starts suggesting the landmarks (a landmark-free fit, then the template's landmarks snapped
   /// to the scan, each with a confidence). Returns false (and starts nothing) while another job
   /// of this scan runs.
@@ -125,6 +140,7 @@ class ScanSession {
   };
   bool start_job(std::string job, std::function<JobEnd()> work);
   void finish(FitState state, JobEnd end);
+  void show_first(std::shared_ptr<const FitOutcome> first);  // a re-fit's first result while it runs
   fit::IterationCallback progress();  // counts iterations and answers a cancel
 
   std::string id_, name_;
@@ -140,6 +156,7 @@ class ScanSession {
   std::mutex target_mutex_;  // held while the index is used (a fit, with_target)
   FitStatus status_;
   std::optional<model::PoseParams> last_params_;  // of the last usable fit
+  std::shared_ptr<const fit::Problem::CorrespondenceState> last_correspondences_;  // its final ones
   int generation_ = 0;
   std::atomic<bool> cancel_{false};
   std::thread worker_;

@@ -355,15 +355,18 @@ struct Server::Impl {
     }));
 
     // The scan's job (fit, re-fit or suggestion) as Server-Sent Events: "progress" events (job,
-    // stage, iterations; at most one per 50 ms) while it runs, then one "end" event with the
-    // whole status (result and suggestion included), and the stream ends. It also ends when the
+    // stage, iterations; at most one per 50 ms) while it runs, a "result" event with the whole
+    // status and a re-fit's first result as its result (the fitted model and drawings, no distances:
+    // "complete" false) when the stream saw the job run, then one "end" event with the whole status
+    // (result and suggestion included), and the stream ends. It also ends when the
     // server stops (Ctrl-C never waits for a page) or the page goes away (a comment line every
     // 100 ms without news finds out).
     http.Get(R"(/api/scans/(\d+)/events)", guarded([this](const httplib::Request& req, httplib::Response& res) {
       const auto s = session(req);
       res.set_chunked_content_provider(
           "text/event-stream",
-          [this, s, seen = ~uint64_t{0}, last = std::chrono::steady_clock::time_point{}](size_t, httplib::DataSink& sink) mutable {
+          [this, s, seen = ~uint64_t{0}, last = std::chrono::steady_clock::time_point{},
+           shown = std::shared_ptr<const FitOutcome>{}, ran = false](size_t, httplib::DataSink& sink) mutable {
             using namespace std::chrono;
             FitStatus st = s->wait_status(seen, milliseconds(100));
             const bool news = st.version != seen;
@@ -372,10 +375,19 @@ struct Server::Impl {
               st = s->status();
             }
             if (stop_requested || !sink.is_writable()) return false;
-            const bool end = st.state != FitState::Running;
-            const std::string event = end    ? "event: end\ndata: " + to_json(st, *model).dump() + "\n\n"
-                                      : news ? "event: progress\ndata: " + to_json(st, *model, false).dump() + "\n\n"
-                                             : std::string(": waiting\n\n");
+            ran = ran || st.state == FitState::Running;
+            const bool first = ran && st.first && st.first != shown;  // the job's end follows on the next call
+            FitStatus first_status;
+            if (first) {
+              shown = st.first;
+              first_status = st;
+              first_status.outcome = st.first;
+            }
+            const bool end = !first && st.state != FitState::Running;
+            const std::string event = first   ? "event: result\ndata: " + to_json(first_status, *model).dump() + "\n\n"
+                                      : end   ? "event: end\ndata: " + to_json(st, *model).dump() + "\n\n"
+                                      : news  ? "event: progress\ndata: " + to_json(st, *model, false).dump() + "\n\n"
+                                              : std::string(": waiting\n\n");
             seen = st.version;
             if (news) last = steady_clock::now();
             if (!sink.write(event.data(), event.size())) return false;

@@ -105,6 +105,8 @@ json to_json(const FitOutcome& o, const model::RiggedModel& model) {
   j["warm"] = o.warm;
   j["server_ms"] = o.server_ms;
   j["server_cpu_ms"] = o.server_cpu_ms;
+  j["surface_ms"] = o.surface_ms;
+  j["complete"] = o.complete;
   j["usable"] = r.usable();
   j["status"] = r.status();  // "ok", "implausible" or "not_usable" (report.json's)
   j["verdict"] = r.fit.summary.verdict.reason;
