@@ -275,9 +275,8 @@ void register_bench(CLI::App& app, int& exit_code) {
         const pipeline::RegisterRequest full_req = read_request();
         pipeline::PreparedTarget target = pipeline::prepare_target(full_req.scan, full_req.scan_name, {}, options);
         pipeline::RegisterOutputOptions with_layers = full_options;
-        auto layers = pipeline::start_report_layers(full_req, target, full_options.figures);
+        with_layers.layers = pipeline::start_report_layers(full_req, target, full_options.figures);
         const pipeline::RegisterResult full_result = pipeline::register_prepared(full_req, target);
-        with_layers.layers = layers.get();
         if (full_result.usable()) pipeline::write_register_outputs(scratch, full_result, *model, true, {}, with_layers);
         fulls.push_back(full.seconds());
         full_cpus.push_back(process_cpu_s() - cpu_full);

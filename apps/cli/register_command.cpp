@@ -94,9 +94,8 @@ void register_register(CLI::App& app, int& exit_code) {
     pipeline::RegisterOutputOptions output_options;
     output_options.report_html = !args->no_report_html;
     // The report's overlay figures' scan layers are drawn on a thread of their own while the
-    // fit runs (its second core is mostly idle); nothing when the fit will be landmark-free.
-    std::future<std::shared_ptr<pipeline::ReportLayers>> layers;
-    if (output_options.report_html) layers = pipeline::start_report_layers(req, target, output_options.figures);
+    // fit runs; nothing when the fit will be landmark-free.
+    if (output_options.report_html) output_options.layers = pipeline::start_report_layers(req, target, output_options.figures);
     auto result = pipeline::register_prepared(req, target, progress_printer(args->quiet));
     result.time_s += target.timings.back().seconds;  // as register_scan: the index build included
     if (!result.usable()) {
@@ -107,7 +106,6 @@ void register_register(CLI::App& app, int& exit_code) {
       exit_code = kExitNotConverged;
       return;
     }
-    if (layers.valid()) output_options.layers = layers.get();
     pipeline::write_register_outputs(args->out, result, model, args->force, inputs, output_options);
     if (result.fit.summary.initialization == "landmark-free")  // one line, quiet or not
       std::cerr << "breastfit: " << (args->landmarks.empty() || args->no_landmarks ? "no landmarks given: " : "")

@@ -68,24 +68,25 @@ BENCHMARK(BM_OverlayScene)->Unit(benchmark::kMillisecond);
 
 // The report's path with landmarks (report_layers.h). Arg 0: the five overlay figures' scan
 // layers drawn on one thread (what `register` draws beside the fit), the setup included;
-// Arg 1: the rest, after the fit, over layers drawn beforehand (the overlays, the distance
-// figure and the six PNGs, concurrently as `register` does).
+// Arg 1: the rest, after the fit, over layers drawn beforehand by a ReportLayerDrawing (the
+// overlays, the distance figure and the six PNGs, concurrently as `register` does).
 void BM_ReportLayers(benchmark::State& state) {
   auto& f = fixture();
-  pipeline::ReportFigureOptions one;
-  one.parallel = false;
+  const pipeline::ReportFigureOptions o;
   const bool after_fit = state.range(0) != 0;
   for (auto _ : state) {
-    if (after_fit) state.PauseTiming();
-    auto layers = pipeline::plan_report_layers(f.result, *f.model, one);
-    pipeline::draw_report_layers(*layers, one);
     if (!after_fit) {
-      benchmark::DoNotOptimize(layers->views.size());
+      const auto layers = pipeline::plan_report_layers(f.result, *f.model, o);
+      for (size_t k = 0; k < pipeline::kOverlayFigures; ++k)
+        benchmark::DoNotOptimize(pipeline::draw_report_layer(*layers, k, o).surface_coverage());
       continue;
     }
-    auto ahead = std::make_shared<pipeline::ReportLayers>(std::move(*layers));
+    state.PauseTiming();
+    auto drawing = std::make_shared<pipeline::ReportLayerDrawing>(
+        [&] { return pipeline::plan_report_layers(f.result, *f.model, o); }, o);
+    drawing->wait();
     state.ResumeTiming();
-    benchmark::DoNotOptimize(pipeline::report_figures(f.result, *f.model, {}, ahead).figures.size());
+    benchmark::DoNotOptimize(pipeline::report_figures(f.result, *f.model, o, drawing).figures.size());
   }
 }
 BENCHMARK(BM_ReportLayers)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();

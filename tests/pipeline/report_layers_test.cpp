@@ -1,11 +1,12 @@
 // The report's overlay figures' scan layers (drawn before the fit ends): set up from the
 // template as the landmark initialisation places it, none without landmarks, the same figures
-// whether drawn ahead (beside the fit, one thread or several) or after the fit, the crop, and
-// the legend clear of the body.
+// whether drawn ahead by the drawing thread, taken by the figures, or drawn after the fit (one
+// thread or several), the plan's errors, the crop, and the legend clear of the body.
 #include "breastfit/pipeline/report_layers.h"
 
 #include <gtest/gtest.h>
 
+#include "breastfit/core/errors.h"
 #include "breastfit/fit/registration.h"
 #include "breastfit/mesh/landmarks.h"
 #include "breastfit/render/torso_overlays.h"
@@ -35,7 +36,6 @@ TEST(ReportLayers, SetUpFromTheTemplateAsTheLandmarkInitialisationPlacesIt) {
   const auto layers = pipeline::plan_report_layers(r, model, small_options());
   ASSERT_TRUE(layers);
   EXPECT_NE(layers->frame.description.find("landmarks"), std::string::npos) << layers->frame.description;
-  EXPECT_TRUE(layers->views.empty());
   ASSERT_EQ(layers->scan_scene.meshes.size(), 1u);
   const TriangleMesh& scan = layers->scan_scene.meshes[0].mesh;
   EXPECT_TRUE(scan.has_normals());
@@ -65,24 +65,46 @@ TEST(ReportLayers, NoneWithoutALandmarkInitialisation) {
                    pipeline::render_report_figures(landmark_free, small_options()));
 }
 
-TEST(ReportLayers, DrawnAheadOnOneThreadOrAfterwardsTheSameFigures) {
+TEST(ReportLayers, DrawnAheadOrAfterwardsTheSameFigures) {
   const auto& r = test::report_test_result();
   const auto& model = test::report_test_model();
-  pipeline::ReportFigureOptions one = small_options();
-  one.parallel = false;
-  auto layers = pipeline::plan_report_layers(r, model, one);
-  ASSERT_TRUE(layers);
-  pipeline::draw_report_layers(*layers, one);
-  ASSERT_EQ(layers->views.size(), pipeline::kOverlayFigures);
-  const pipeline::ReportFigures ahead = pipeline::render_report_figures(r, std::move(*layers), small_options());
   const pipeline::ReportFigures after = pipeline::report_figures(r, model, small_options());
-  expect_same_pngs(ahead, after);
-  // The figures differ from the fitted model's framing only by the frame and crop (same sizes).
+  auto planned = pipeline::plan_report_layers(r, model, small_options());
+  ASSERT_TRUE(planned);
+  expect_same_pngs(pipeline::render_report_figures(r, *planned, small_options()), after);
+  // Every layer drawn by the drawing thread before the figures take them.
+  auto ahead = std::make_shared<pipeline::ReportLayerDrawing>(
+      [&] { return pipeline::plan_report_layers(r, model, small_options()); }, small_options());
+  ahead->wait();
+  expect_same_pngs(pipeline::report_figures(r, model, small_options(), ahead), after);
+  // Taken by the figures while the thread draws (on one thread or several).
+  for (bool parallel : {false, true}) {
+    pipeline::ReportFigureOptions o = small_options();
+    o.parallel = parallel;
+    auto racing = std::make_shared<pipeline::ReportLayerDrawing>(
+        [&] { return pipeline::plan_report_layers(r, model, o); }, o);
+    expect_same_pngs(pipeline::report_figures(r, model, o, racing), after);
+  }
+  // Other sizes than the layers': refused.
+  pipeline::ReportFigureOptions bigger = small_options();
+  bigger.size += 16;
+  auto other = std::make_shared<pipeline::ReportLayerDrawing>(
+      [&] { return pipeline::plan_report_layers(r, model, small_options()); }, small_options());
+  EXPECT_THROW(pipeline::report_figures(r, model, bigger, other), InvalidInput);
+  // The landmark-free way differs only by the frame and crop (same sizes and ids).
   const pipeline::ReportFigures fitted = pipeline::render_report_figures(r, small_options());
   for (size_t i = 0; i < after.figures.size(); ++i) {
     EXPECT_EQ(after.figures[i].image.width(), fitted.figures[i].image.width());
     EXPECT_EQ(after.figures[i].id, fitted.figures[i].id);
   }
+}
+
+TEST(ReportLayers, AnErrorOfThePlanComesFromLayers) {
+  pipeline::ReportLayerDrawing failing([]() -> std::optional<pipeline::ReportLayers> { throw InvalidInput("bad"); },
+                                       small_options());
+  EXPECT_THROW(failing.layers(), InvalidInput);
+  pipeline::ReportLayerDrawing none([] { return std::optional<pipeline::ReportLayers>(); }, small_options());
+  EXPECT_EQ(none.layers(), nullptr);
 }
 
 TEST(ReportLayers, StartedBesideTheFitGiveTheReportsFigures) {
@@ -100,18 +122,19 @@ TEST(ReportLayers, StartedBesideTheFitGiveTheReportsFigures) {
   pipeline::PreparedTarget target = pipeline::prepare_target(req.scan, req.scan_name, {}, req.options);
   auto started = pipeline::start_report_layers(req, target, small_options());
   const pipeline::RegisterResult r = pipeline::register_prepared(req, target);
-  std::shared_ptr<pipeline::ReportLayers> layers = started.get();
-  ASSERT_TRUE(layers);
-  ASSERT_EQ(layers->views.size(), pipeline::kOverlayFigures);
-  expect_same_pngs(pipeline::report_figures(r, model, small_options(), layers),
+  ASSERT_NE(started->layers(), nullptr);
+  expect_same_pngs(pipeline::report_figures(r, model, small_options(), started),
                    pipeline::report_figures(r, model, small_options()));
 
-  // Without landmarks nothing is drawn ahead.
+  // Without landmarks nothing is drawn ahead; the figures are framed from the fitted model.
   req.landmarks.reset();
-  EXPECT_EQ(pipeline::start_report_layers(req, target, small_options()).get(), nullptr);
+  EXPECT_EQ(pipeline::start_report_layers(req, target, small_options())->layers(), nullptr);
   req.landmarks = lms;
   req.options.use_landmarks = false;
-  EXPECT_EQ(pipeline::start_report_layers(req, target, small_options()).get(), nullptr);
+  auto none = pipeline::start_report_layers(req, target, small_options());
+  EXPECT_EQ(none->layers(), nullptr);
+  expect_same_pngs(pipeline::report_figures(r, model, small_options(), none),
+                   pipeline::render_report_figures(r, small_options()));
 }
 
 TEST(ReportLayers, TheCropLeavesOutFarFragments) {

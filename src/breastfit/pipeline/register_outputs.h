@@ -27,8 +27,8 @@ struct RegisterOutputOptions {
   bool report_html = true;       ///< write report.html (renders its three images; see report_html.h)
   ReportFigureOptions figures;   ///< the report's images
   /// The report's overlay figures' scan layers, drawn while the fit ran (start_report_layers with
-  /// `figures`), consumed; nullptr: drawn here (the same bytes).
-  std::shared_ptr<ReportLayers> layers;
+  /// `figures`); nullptr: drawn here (the same bytes).
+  std::shared_ptr<ReportLayerDrawing> layers;
 };
 
 /// Creates `dir` if needed and writes the outputs as one set (io/output_set.h): all files are

@@ -201,6 +201,17 @@ void check_result(const RegisterResult& r, const ReportFigureOptions& o) {
     throw InvalidInput("render_report_figures: the result has no fitted model or no scan");
 }
 
+/// The figures over scan layers: overlay figure k's layer from `layer(k)`.
+ReportFigures render_over_layers(const RegisterResult& r, const mesh::BodyFrame& frame, const ReportFigureOptions& o,
+                                 const std::function<render::Rasterizer(size_t)>& layer) {
+  check_result(r, o);
+  const render::Scene scene = overlay_marks(r, o);
+  ReportFigureOptions side = o;
+  side.size = o.side_size;
+  const render::Scene side_scene = overlay_marks(r, side);
+  return render_figures(r, o, frame, scene, side_scene, [&](size_t k, const render::Scene&) { return layer(k); });
+}
+
 }  // namespace
 
 void ReportFigureOptions::validate() const {
@@ -294,22 +305,23 @@ ReportFigures render_report_figures(const RegisterResult& r, const ReportFigureO
   });
 }
 
-ReportFigures render_report_figures(const RegisterResult& r, ReportLayers layers, const ReportFigureOptions& o) {
-  check_result(r, o);
-  const render::Scene scene = overlay_marks(r, o);
-  ReportFigureOptions side = o;
-  side.size = o.side_size;
-  const render::Scene side_scene = overlay_marks(r, side);
-  return render_figures(r, o, layers.frame, scene, side_scene, [&](size_t k, const render::Scene&) {
-    return layers.views.size() == kOverlayFigures ? std::move(layers.views[k]) : draw_report_layer(layers, k, o);
-  });
+ReportFigures render_report_figures(const RegisterResult& r, const ReportLayers& layers, const ReportFigureOptions& o) {
+  return render_over_layers(r, layers.frame, o, [&](size_t k) { return draw_report_layer(layers, k, o); });
 }
 
 ReportFigures report_figures(const RegisterResult& r, const model::RiggedModel& model, const ReportFigureOptions& o,
-                             std::shared_ptr<ReportLayers> layers) {
-  if (layers) return render_report_figures(r, std::move(*layers), o);
-  if (std::optional<ReportLayers> planned = plan_report_layers(r, model, o))
-    return render_report_figures(r, std::move(*planned), o);
+                             const std::shared_ptr<ReportLayerDrawing>& drawing) {
+  if (drawing) {
+    const ReportLayers* layers = drawing->layers();
+    if (layers) {
+      const ReportFigureOptions& d = drawing->options();
+      if (d.size != o.size || d.side_size != o.side_size || d.supersample != o.supersample || d.text_scale != o.text_scale)
+        throw InvalidInput("report_figures: the scan layers were drawn with other figure sizes");
+      return render_over_layers(r, layers->frame, o, [&](size_t k) { return drawing->take(k); });
+    }
+  } else if (std::optional<ReportLayers> planned = plan_report_layers(r, model, o)) {
+    return render_report_figures(r, *planned, o);
+  }
   return render_report_figures(r, o);
 }
 

@@ -31,6 +31,7 @@
 namespace breastfit::pipeline {
 
 struct ReportLayers;
+class ReportLayerDrawing;
 
 struct ReportFigureOptions {
   int size = 900;                   ///< front and distance figures: square images, pixels (>= 64)
@@ -102,17 +103,19 @@ render::Scene overlay_scene(const RegisterResult& result, const ReportFigureOpti
 /// without its template). \throws InvalidInput for invalid options or an empty result.
 ReportFigures render_report_figures(const RegisterResult& result, const ReportFigureOptions& options = {});
 
-/// Renders the six figures over `layers` (plan_report_layers with the same options; its views
-/// drawn by draw_report_layers, or empty: drawn here), which it consumes: their body frame and
-/// scan layers; the overlays, the distance figure and the PNGs are drawn here.
+/// Renders the six figures over `layers` (plan_report_layers with the same options): their body
+/// frame and scan layers, with the overlays, the distance figure and the PNGs.
 /// \throws InvalidInput for invalid options or an empty result.
-ReportFigures render_report_figures(const RegisterResult& result, ReportLayers layers,
+ReportFigures render_report_figures(const RegisterResult& result, const ReportLayers& layers,
                                     const ReportFigureOptions& options = {});
 
-/// The figures as report.html shows them: over plan_report_layers(result, model) when the fit
-/// was initialised from landmarks (over `layers` when given, drawn beforehand with the same
-/// options), else framed from the fitted model. \throws as render_report_figures.
+/// The figures as report.html shows them: over the scan layers of `drawing` (started beside the
+/// fit with the same options; it may have none: landmark-free) or, without one, over
+/// plan_report_layers(result, model) when the fit was initialised from landmarks; otherwise
+/// framed from the fitted model. The same bytes either way.
+/// \throws as render_report_figures; InvalidInput when `drawing` used other figure sizes.
 ReportFigures report_figures(const RegisterResult& result, const model::RiggedModel& model,
-                             const ReportFigureOptions& options = {}, std::shared_ptr<ReportLayers> layers = nullptr);
+                             const ReportFigureOptions& options = {},
+                             const std::shared_ptr<ReportLayerDrawing>& drawing = nullptr);
 
 }  // namespace breastfit::pipeline

@@ -35,6 +35,6 @@ std::string report_html(const RegisterResult& result, const std::string& templat
 /// \throws IoError if the file cannot be written; InvalidInput for invalid options
 void write_report_html(const std::filesystem::path& path, const RegisterResult& result,
                        const model::RiggedModel& model, const ReportFigureOptions& options = {},
-                       std::shared_ptr<ReportLayers> layers = nullptr);
+                       const std::shared_ptr<ReportLayerDrawing>& layers = nullptr);
 
 }  // namespace breastfit::pipeline

@@ -2,7 +2,6 @@
 
 #include <thread>
 
-#include "breastfit/core/task_queue.h"
 #include "breastfit/fit/initialization.h"
 #include "breastfit/fit/registration.h"
 #include "breastfit/fit/sliding_landmarks.h"
@@ -131,27 +130,62 @@ render::Rasterizer draw_report_layer(const ReportLayers& layers, size_t k, const
   return render::draw_scene_meshes(layers.scan_scene, overlay_render_options(k, options, layers.frame.body_to_world));
 }
 
-void draw_report_layers(ReportLayers& layers, const ReportFigureOptions& options) {
-  std::vector<std::optional<render::Rasterizer>> drawn(kOverlayFigures);
-  run_in_order(kOverlayFigures, options.parallel ? std::thread::hardware_concurrency() : 1,
-               [&](size_t k) { drawn[k] = draw_report_layer(layers, k, options); });
-  layers.views.clear();
-  for (auto& d : drawn) layers.views.push_back(std::move(*d));
+ReportLayerDrawing::ReportLayerDrawing(std::function<std::optional<ReportLayers>()> plan,
+                                       const ReportFigureOptions& options)
+    : options_(options), planned_future_(planned_.get_future().share()) {
+  for (size_t k = 0; k < kOverlayFigures; ++k) drawn_future_[k] = drawn_[k].get_future();
+  thread_ = std::thread([this, plan = std::move(plan)] { run(plan); });
 }
 
-std::future<std::shared_ptr<ReportLayers>> start_report_layers(const RegisterRequest& req, const PreparedTarget& target,
-                                                               const ReportFigureOptions& options) {
-  return std::async(std::launch::async, [&req, &target, options]() -> std::shared_ptr<ReportLayers> {
-    std::vector<std::pair<std::string, Vec3>> landmarks_mm;
-    if (req.landmarks) landmarks_mm = prepare_landmarks(*req.landmarks, target.scan.units);
-    std::optional<ReportLayers> layers =
-        plan_report_layers(target.scan.mesh_mm, *req.model, initialization_landmarks(fit::match_landmarks(*req.model, landmarks_mm), req.options), options);
-    if (!layers) return nullptr;
-    ReportFigureOptions one_thread = options;  // beside the fit: one thread (the same pixels)
-    one_thread.parallel = false;
-    draw_report_layers(*layers, one_thread);
-    return std::make_shared<ReportLayers>(std::move(*layers));
-  });
+ReportLayerDrawing::~ReportLayerDrawing() {
+  for (auto& c : claimed_) c = true;  // no figure will take them: the thread stops after its current layer
+  wait();
+}
+
+void ReportLayerDrawing::wait() {
+  if (thread_.joinable()) thread_.join();
+}
+
+void ReportLayerDrawing::run(const std::function<std::optional<ReportLayers>()>& plan) {
+  try {
+    layers_ = plan();
+  } catch (...) {
+    planned_.set_exception(std::current_exception());
+    return;
+  }
+  planned_.set_value();
+  if (!layers_) return;
+  for (size_t k = 0; k < kOverlayFigures; ++k) {
+    if (claimed_[k].exchange(true)) continue;  // taken by a figure
+    try {
+      drawn_[k].set_value(draw_report_layer(*layers_, k, options_));
+    } catch (...) {
+      drawn_[k].set_exception(std::current_exception());
+    }
+  }
+}
+
+const ReportLayers* ReportLayerDrawing::layers() {
+  planned_future_.get();
+  return layers_ ? &*layers_ : nullptr;
+}
+
+render::Rasterizer ReportLayerDrawing::take(size_t k) {
+  if (!claimed_.at(k).exchange(true)) return draw_report_layer(*layers(), k, options_);
+  return drawn_future_[k].get();
+}
+
+std::shared_ptr<ReportLayerDrawing> start_report_layers(const RegisterRequest& req, const PreparedTarget& target,
+                                                        const ReportFigureOptions& options) {
+  return std::make_shared<ReportLayerDrawing>(
+      [&req, &target, options]() -> std::optional<ReportLayers> {
+        std::vector<std::pair<std::string, Vec3>> landmarks_mm;
+        if (req.landmarks) landmarks_mm = prepare_landmarks(*req.landmarks, target.scan.units);
+        return plan_report_layers(target.scan.mesh_mm, *req.model,
+                                  initialization_landmarks(fit::match_landmarks(*req.model, landmarks_mm), req.options),
+                                  options);
+      },
+      options);
 }
 
 }  // namespace breastfit::pipeline

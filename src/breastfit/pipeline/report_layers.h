@@ -11,15 +11,18 @@
 ///    sideways, where the arms may be raised) of that posed template's box in the body frame;
 ///  - the framing: the cropped scan, with the legend's band for the template's drawing names,
 ///    the off-scan entry and the placed landmarks' entry (the most the figures can show).
-/// `breastfit register` draws the layers on a thread of its own while the fit runs (the fit's
-/// second core is mostly idle); every other writer of report.html draws them afterwards. Both
-/// give the same bytes. A landmark-free fit has no such pose before its end: its figures are
+/// `breastfit register` draws the layers on a thread of its own while the fit runs
+/// (ReportLayerDrawing); every other writer of report.html draws them afterwards. Both give the
+/// same bytes. A landmark-free fit has no such pose before its end: its figures are
 /// framed from the fitted model (report_figures.h), as before.
 #include <array>
+#include <atomic>
+#include <functional>
 #include <future>
 #include <memory>
 #include <optional>
 #include <string>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -64,11 +67,10 @@ inline constexpr double kCropArmMarginMm = 120.0;
 /// the torso in the framed image. The whole scan when nothing would be left.
 TriangleMesh crop_scan(const TriangleMesh& scan, const Eigen::AlignedBox3d& box, const Eigen::Matrix4d& body_to_world);
 
-/// The overlay figures' scan layers: set up by plan_report_layers, drawn by draw_report_layers.
+/// The overlay figures' scan layers, set up by plan_report_layers (drawn by draw_report_layer).
 struct ReportLayers {
   mesh::BodyFrame frame;     ///< the figures' body frame (the distance figure's too)
   render::Scene scan_scene;  ///< the cropped scan and the legend's entries (no points): what the layers frame
-  std::vector<render::Rasterizer> views;  ///< the five layers in overlay_figure_specs order; empty until drawn
 };
 
 /// Sets up the layers for a fit initialised from `landmarks` (initialization_landmarks) on
@@ -84,16 +86,48 @@ std::optional<ReportLayers> plan_report_layers(const RegisterResult& result, con
 /// Draws layer `k` (the cropped scan in figure k's view). Deterministic.
 render::Rasterizer draw_report_layer(const ReportLayers& layers, size_t k, const ReportFigureOptions& options);
 
-/// Draws all five into layers.views, on one worker per core when options.parallel (the same
-/// pixels either way).
-void draw_report_layers(ReportLayers& layers, const ReportFigureOptions& options);
+/// The layers of one registration drawn on a thread of their own while the fit runs
+/// (start_report_layers): the thread plans them, then draws the five in order. A figure that
+/// needs a layer the thread has not begun draws it itself (take), so the report after the fit
+/// waits only for a layer already under way. The same pixels whoever draws. (The thread keeps
+/// the process's priority: at a lower one, a figure could wait for a layer under way on a thread
+/// that the machine's other work starves.)
+class ReportLayerDrawing {
+ public:
+  /// Starts the thread: `plan` (run on it) gives the layers, nullopt for none.
+  ReportLayerDrawing(std::function<std::optional<ReportLayers>()> plan, const ReportFigureOptions& options);
+  ~ReportLayerDrawing();  ///< stops the thread after the layer under way and waits for it
+  ReportLayerDrawing(const ReportLayerDrawing&) = delete;
+  ReportLayerDrawing& operator=(const ReportLayerDrawing&) = delete;
+
+  /// The planned layers, nullptr for none; waits for the plan. \throws the plan's error.
+  const ReportLayers* layers();
+  /// Layer k (once): the thread's (waiting for it when under way), or drawn here when the thread
+  /// has not begun it. \pre layers() != nullptr. \throws the drawing's error.
+  render::Rasterizer take(size_t k);
+  /// Waits until the thread has ended (every layer drawn or taken).
+  void wait();
+  /// The options the layers are drawn with.
+  const ReportFigureOptions& options() const { return options_; }
+
+ private:
+  void run(const std::function<std::optional<ReportLayers>()>& plan);
+
+  ReportFigureOptions options_;
+  std::optional<ReportLayers> layers_;
+  std::promise<void> planned_;
+  std::shared_future<void> planned_future_;
+  std::array<std::atomic<bool>, kOverlayFigures> claimed_{};
+  std::array<std::promise<render::Rasterizer>, kOverlayFigures> drawn_;
+  std::array<std::future<render::Rasterizer>, kOverlayFigures> drawn_future_;
+  std::thread thread_;
+};
 
 /// Starts drawing the layers of `request`'s registration on a thread of its own (the scan as
-/// `target` prepared it; the template `request.model`, which must be set): the result is
-/// nullptr when the fit will be landmark-free. `target` and `request` must outlive the future.
-/// \throws (from the future) InvalidInput as fit::match_landmarks.
-std::future<std::shared_ptr<ReportLayers>> start_report_layers(const RegisterRequest& request,
-                                                               const PreparedTarget& target,
-                                                               const ReportFigureOptions& options);
+/// `target` prepared it; the template `request.model`, which must be set); its layers() are
+/// nullptr when the fit will be landmark-free. `target` and `request` must outlive the planning
+/// (layers() returns after it). \throws (from layers()) InvalidInput as fit::match_landmarks.
+std::shared_ptr<ReportLayerDrawing> start_report_layers(const RegisterRequest& request, const PreparedTarget& target,
+                                                        const ReportFigureOptions& options);
 
 }  // namespace breastfit::pipeline
