@@ -112,13 +112,8 @@ TEST(ReportLayers, StartedBesideTheFitGiveTheReportsFigures) {
   synth::SynthOptions so;
   so.seed = 11;
   so.pose = synth::PoseType::Supine;
-  const synth::SynthCase c = synth::make_case(model, so);
-  pipeline::RegisterRequest req;
-  req.scan = c.scan;
-  req.model = test::default_template();
-  LandmarkSet lms;
-  lms.points = c.input_landmarks;
-  req.landmarks = lms;
+  pipeline::RegisterRequest req = test::synth_request(synth::make_case(model, so));
+  const std::optional<LandmarkSet> lms = req.landmarks;
   pipeline::PreparedTarget target = pipeline::prepare_target(req.scan, req.scan_name, {}, req.options);
   auto started = pipeline::start_report_layers(req, target, small_options());
   const pipeline::RegisterResult r = pipeline::register_prepared(req, target);
