@@ -11,6 +11,7 @@
 #include "breastfit/pipeline/provenance.h"
 #include "breastfit/pipeline/register_outputs.h"
 #include "breastfit/pipeline/register_scan.h"
+#include "breastfit/pipeline/report_layers.h"
 #include "command_support.h"
 #include "commands.h"
 #include "exit_codes.h"
@@ -90,6 +91,11 @@ void register_register(CLI::App& app, int& exit_code) {
     req.provenance = std::move(l.provenance);
     const model::RiggedModel& model = *req.model;
 
+    pipeline::RegisterOutputOptions output_options;
+    output_options.report_html = !args->no_report_html;
+    // The report's overlay figures' scan layers are drawn on a thread of their own while the
+    // fit runs; nothing when the fit will be landmark-free.
+    if (output_options.report_html) output_options.layers = pipeline::start_report_layers(req, target, output_options.figures);
     auto result = pipeline::register_prepared(req, target, progress_printer(args->quiet));
     result.time_s += target.timings.back().seconds;  // as register_scan: the index build included
     if (!result.usable()) {
@@ -100,8 +106,6 @@ void register_register(CLI::App& app, int& exit_code) {
       exit_code = kExitNotConverged;
       return;
     }
-    pipeline::RegisterOutputOptions output_options;
-    output_options.report_html = !args->no_report_html;
     pipeline::write_register_outputs(args->out, result, model, args->force, inputs, output_options);
     if (result.fit.summary.initialization == "landmark-free")  // one line, quiet or not
       std::cerr << "breastfit: " << (args->landmarks.empty() || args->no_landmarks ? "no landmarks given: " : "")

@@ -1,13 +1,15 @@
 // Benchmarks of report.html (docs/PERFORMANCE.md, docs/REPORT.md) on a synthetic case written to
 // a temporary directory (no external data): the six figures (sequential and concurrent), one
-// overlay figure's rendering alone (front or side), PNG encoding of a front figure, and the HTML
-// with its base64 images.
+// overlay figure's rendering alone (front or side), the scan layers drawn before the fit and the
+// rest after it, PNG encoding of a front figure, and the HTML with its base64 images.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <memory>
 
 #include "breastfit/pipeline/report_figures.h"
 #include "breastfit/pipeline/report_html.h"
+#include "breastfit/pipeline/report_layers.h"
 #include "breastfit/render/scene.h"
 #include "registered_case.h"
 
@@ -63,6 +65,31 @@ void BM_OverlayScene(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(pipeline::overlay_scene(f.result).meshes.size());
 }
 BENCHMARK(BM_OverlayScene)->Unit(benchmark::kMillisecond);
+
+// The report's path with landmarks (report_layers.h). Arg 0: the five overlay figures' scan
+// layers drawn on one thread (what `register` draws beside the fit), the setup included;
+// Arg 1: the rest, after the fit, over layers drawn beforehand by a ReportLayerDrawing (the
+// overlays, the distance figure and the six PNGs, concurrently as `register` does).
+void BM_ReportLayers(benchmark::State& state) {
+  auto& f = fixture();
+  const pipeline::ReportFigureOptions o;
+  const bool after_fit = state.range(0) != 0;
+  for (auto _ : state) {
+    if (!after_fit) {
+      const auto layers = pipeline::plan_report_layers(f.result, *f.model, o);
+      for (size_t k = 0; k < pipeline::kOverlayFigures; ++k)
+        benchmark::DoNotOptimize(pipeline::draw_report_layer(*layers, k, o).surface_coverage());
+      continue;
+    }
+    state.PauseTiming();
+    auto drawing = std::make_shared<pipeline::ReportLayerDrawing>(
+        [&] { return pipeline::plan_report_layers(f.result, *f.model, o); }, o);
+    drawing->wait();
+    state.ResumeTiming();
+    benchmark::DoNotOptimize(pipeline::report_figures(f.result, *f.model, o, drawing).figures.size());
+  }
+}
+BENCHMARK(BM_ReportLayers)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void BM_EncodeFrontPng(benchmark::State& state) {
   auto& f = fixture();

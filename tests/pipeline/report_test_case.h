@@ -11,18 +11,23 @@ namespace breastfit::test {
 
 inline const model::RiggedModel& report_test_model() { return *test::default_template(); }
 
+/// A registration request for a synthetic case: its scan and landmarks, the shipped template.
+inline pipeline::RegisterRequest synth_request(const synth::SynthCase& c) {
+  pipeline::RegisterRequest req;
+  req.scan = c.scan;
+  req.model = test::default_template();
+  LandmarkSet lms;
+  lms.points = c.input_landmarks;
+  req.landmarks = lms;
+  return req;
+}
+
 inline const pipeline::RegisterResult& report_test_result() {
   static const pipeline::RegisterResult r = [] {
     synth::SynthOptions o;
     o.seed = 7;
-    const synth::SynthCase c = synth::make_case(report_test_model(), o);
-    pipeline::RegisterRequest req;
-    req.scan = c.scan;
+    pipeline::RegisterRequest req = synth_request(synth::make_case(report_test_model(), o));
     req.scan_name = "cases/synth <7>/scan.ply";  // a name that needs escaping in HTML
-    req.model = test::default_template();
-    LandmarkSet lms;
-    lms.points = c.input_landmarks;
-    req.landmarks = lms;
     return pipeline::register_scan(req);
   }();
   return r;

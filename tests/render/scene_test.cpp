@@ -97,6 +97,34 @@ TEST(Scene, DeterministicPngBytes) {
   EXPECT_EQ(read_png(path).bytes(), img.bytes());
 }
 
+TEST(Scene, TwoPassesGiveRenderScene) {
+  Scene s = sphere_scene({Vec3(-60, -80, 0), Vec3(0, 100, 0)});
+  s.points[0].label = "nipple_R";
+  Points ring(120, 3);
+  for (int i = 0; i < 120; ++i) ring.row(i) << 100 * std::cos(i * 0.0524), 100 * std::sin(i * 0.0524), 0;
+  s.polylines.push_back({.name = "equator", .points = ring, .closed = true});
+  RenderOptions o = small(View::Oblique);
+  o.title = "two passes";
+  o.show_labels = true;
+  o.show_orientation = true;
+  const Image whole = render_scene(s, o);
+  EXPECT_EQ(finish_scene(draw_scene_meshes(s, o), s, o).bytes(), whole.bytes());
+  // The meshes' pass alone: the sphere, no marker; the overlays' pass may leave the meshes out.
+  Scene meshes_only;
+  meshes_only.meshes = s.meshes;
+  meshes_only.polylines.push_back({.name = "equator", .points = Points(), .closed = true});  // the legend's band
+  Rasterizer raster = draw_scene_meshes(meshes_only, o);
+  EXPECT_GT(raster.surface_coverage(), 0.1);
+  EXPECT_EQ(marker_pixels(raster.resolve()).second, 0);
+  Scene overlays = s;
+  overlays.meshes.clear();
+  const Image two = finish_scene(std::move(raster), overlays, o);
+  EXPECT_GT(marker_pixels(two).second, 20);
+  // The ring and markers lie within the sphere's box and the legend's band was reserved: the same
+  // camera and depth bias, so the same image as in one pass.
+  EXPECT_EQ(two.bytes(), whole.bytes());
+}
+
 TEST(Scene, BodyToWorldTransformGivesTheSameView) {
   // The same scene rotated into a "scanner" frame, rendered with that body→world transform,
   // looks the same as the body-frame scene with the identity.

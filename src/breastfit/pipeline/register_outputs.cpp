@@ -65,7 +65,7 @@ void write_register_outputs(const fs::path& dir, const RegisterResult& r, const 
   const double from_mm = 1.0 / r.scan.to_mm;
   std::vector<std::function<void()>> groups;
   if (options.report_html)
-    groups.emplace_back([&] { write_report_html(set.path("report.html"), r, model.name, options.figures); });
+    groups.emplace_back([&] { write_report_html(set.path("report.html"), r, model, options.figures, options.layers); });
   groups.emplace_back([&] {
     transfer::write_scan_painted(set.path("scan_painted.ply"), r.scan.mesh_mm, r.drawings_on_scan, from_mm);
     transfer::write_drawings_ply(set.path("drawings.ply"), r.drawings_on_scan, from_mm);

@@ -4,6 +4,7 @@
 /// params.json, report.json and report.html (report_html.h).
 #include <array>
 #include <filesystem>
+#include <memory>
 #include <vector>
 
 #include "breastfit/model/rigged_model.h"
@@ -25,6 +26,9 @@ std::vector<std::string> register_output_names();
 struct RegisterOutputOptions {
   bool report_html = true;       ///< write report.html (renders its three images; see report_html.h)
   ReportFigureOptions figures;   ///< the report's images
+  /// The report's overlay figures' scan layers, drawn while the fit ran (start_report_layers with
+  /// `figures`); nullptr: drawn here (the same bytes).
+  std::shared_ptr<ReportLayerDrawing> layers;
 };
 
 /// Creates `dir` if needed and writes the outputs as one set (io/output_set.h): all files are

@@ -32,6 +32,14 @@ std::string fmt(double v) {
 
 }  // namespace
 
+std::vector<fit::LandmarkTarget> initialization_landmarks(std::vector<fit::LandmarkTarget> targets,
+                                                          const fit::FitOptions& options) {
+  if (!options.use_landmarks) return {};
+  if (options.max_landmarks >= 0 && static_cast<int>(targets.size()) > options.max_landmarks)
+    targets.resize(static_cast<size_t>(options.max_landmarks));
+  return targets;
+}
+
 PreparedTarget prepare_target(const TriangleMesh& scan, const std::string& scan_name,
                               std::optional<mesh::Units> units, const fit::FitOptions& options) {
   PreparedTarget t;
@@ -76,6 +84,7 @@ RegisterResult register_prepared(const RegisterRequest& req, PreparedTarget& tar
   std::vector<std::pair<std::string, Vec3>> landmarks_mm;
   if (req.landmarks) landmarks_mm = prepare_landmarks(*req.landmarks, out.scan.units);
   std::vector<fit::LandmarkTarget> targets = fit::match_landmarks(model, landmarks_mm);
+  out.initial_landmarks = initialization_landmarks(targets, options);
   if (req.landmarks && targets.size() < kLandmarkNames.size()) {
     std::string missing;
     for (auto name : kLandmarkNames)

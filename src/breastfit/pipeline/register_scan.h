@@ -50,6 +50,10 @@ struct RegisterResult {
   std::string scan_name;                ///< RegisterRequest::scan_name (the scan file, for reports)
   PreparedScan scan;                    ///< the scan in mm (and its units)
   fit::FitResult fit;                   ///< parameters, posed vertices (mm), solver summary
+  /// The landmarks the fit's initialisation placed the template by (as selected, before any
+  /// _R/_L correction); fewer than 3: a landmark-free initialisation. The report's figures are
+  /// set up from that placement (report_layers.h).
+  std::vector<fit::LandmarkTarget> initial_landmarks;
   TriangleMesh fitted_mm;               ///< the posed template, mm, scanner frame
   Markups model_landmarks_mm;           ///< the template's landmarks on the fitted model
   Markups drawings_mm;                  ///< the template's drawings transferred onto the scan (mm)
@@ -79,6 +83,12 @@ struct RegisterResult {
   /// "ok", "implausible" (usable, but see `plausibility`) or "not_usable" (report.json "status").
   std::string status() const { return !usable() ? "not_usable" : plausibility.plausible ? "ok" : "implausible"; }
 };
+
+/// The landmarks a fit's initialisation places the template by, of `targets` (fit::match_landmarks),
+/// as fit::register_template selects them (options.use_landmarks, options.max_landmarks); fewer
+/// than 3: a landmark-free initialisation.
+std::vector<fit::LandmarkTarget> initialization_landmarks(std::vector<fit::LandmarkTarget> targets,
+                                                          const fit::FitOptions& options);
 
 /// Runs the registration. `on_iteration` sees every solver iteration and may abort (the result is
 /// then not usable, fit.summary.termination Aborted). \throws InvalidInput for bad scans,

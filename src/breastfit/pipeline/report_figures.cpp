@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <limits>
 #include <thread>
 #include <utility>
@@ -11,9 +12,9 @@
 #include "breastfit/core/errors.h"
 #include "breastfit/core/task_queue.h"
 #include "breastfit/fit/scan_target.h"
-#include "breastfit/mesh/cleanup.h"
 #include "breastfit/mesh/body_frame.h"
 #include "breastfit/mesh/normals.h"
+#include "breastfit/pipeline/report_layers.h"
 #include "breastfit/render/torso_overlays.h"
 
 namespace breastfit::pipeline {
@@ -64,23 +65,11 @@ Points rows_of(const Points& P, const std::vector<Eigen::Index>& idx) {
 /// Pale version of a drawing colour (the parts that follow the fitted model, not the scan).
 render::Rgb pale(render::Rgb c) { return render::mix(c, {255, 255, 255}, 0.5); }
 
-constexpr const char* kOffScanLegend = "pale: no scan under it";
 /// "2.5", "10": a scale value without trailing zeros.
 std::string format_mm(double v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%g", v);
   return buf;
-}
-
-render::RenderOptions base_options(const ReportFigureOptions& o, const Eigen::Matrix4d& body_to_world) {
-  render::RenderOptions ro;
-  ro.width = o.size;
-  ro.height = o.size;
-  ro.supersample = o.supersample;
-  ro.text_scale = o.text_scale;
-  ro.body_to_world = body_to_world;
-  ro.margin = 0.04;
-  return ro;
 }
 
 mesh::BodyFrame body_frame_of(const RegisterResult& r) {
@@ -89,12 +78,14 @@ mesh::BodyFrame body_frame_of(const RegisterResult& r) {
   return mesh::estimate_body_frame(r.fitted_mm, named);
 }
 
-/// The scan without the triangles that lie outside the fitted model's box (in the body frame)
-/// grown by kCropMarginMm: the table, background and far fragments, which would otherwise shrink
-/// the torso in the framed image. The whole scan when nothing would be left.
-constexpr double kCropMarginMm = 40.0;
-TriangleMesh scan_near_fit(const RegisterResult& r, const Eigen::Matrix4d& body_to_world) {
-  const TriangleMesh& scan = r.scan.mesh_mm;
+/// The scan as the overlay figures of a landmark-free fit show it: without what lies more than
+/// kCropMarginMm outside the fitted model's box in the body frame, with vertex normals.
+TriangleMesh overlay_scan(const RegisterResult& r, const Eigen::Matrix4d& body_to_world) {
+  if (r.scan.mesh_mm.num_faces() == 0 || r.fitted_mm.V.rows() == 0) {
+    TriangleMesh scan = r.scan.mesh_mm;
+    if (scan.num_faces() > 0 && !scan.has_normals()) scan.N = mesh::vertex_normals(scan.V, scan.F);
+    return scan;
+  }
   const Eigen::Matrix4d world_to_body = body_to_world.inverse();
   const Eigen::Matrix3d R = world_to_body.topLeftCorner<3, 3>();
   const Vec3 t = world_to_body.topRightCorner<3, 1>();
@@ -102,40 +93,14 @@ TriangleMesh scan_near_fit(const RegisterResult& r, const Eigen::Matrix4d& body_
   for (Eigen::Index i = 0; i < r.fitted_mm.V.rows(); ++i) box.extend(R * r.fitted_mm.V.row(i).transpose() + t);
   box.min().array() -= kCropMarginMm;
   box.max().array() += kCropMarginMm;
-  std::vector<char> inside(static_cast<size_t>(scan.V.rows()));
-  for (Eigen::Index i = 0; i < scan.V.rows(); ++i) inside[i] = box.contains(R * scan.V.row(i).transpose() + t);
-  TriangleMesh out;
-  out.V = scan.V;
-  if (scan.has_normals()) out.N = scan.N;
-  if (scan.has_colors()) out.C = scan.C;
-  out.F.resize(scan.F.rows(), 3);
-  Eigen::Index kept = 0;
-  for (Eigen::Index f = 0; f < scan.F.rows(); ++f)
-    if (inside[scan.F(f, 0)] && inside[scan.F(f, 1)] && inside[scan.F(f, 2)]) out.F.row(kept++) = scan.F.row(f);
-  if (kept == 0) return scan;
-  out.F.conservativeResize(kept, 3);
-  mesh::remove_unreferenced_vertices(out);
-  return out;
+  return crop_scan(r.scan.mesh_mm, box, body_to_world);
 }
 
-/// The scan as the overlay figures show it: scan_near_fit, with vertex normals (computed once
-/// here rather than by every view).
-TriangleMesh overlay_scan(const RegisterResult& r) {
-  TriangleMesh scan = r.scan.mesh_mm.num_faces() > 0 && r.fitted_mm.V.rows() > 0
-                          ? scan_near_fit(r, body_frame_of(r).body_to_world)
-                          : r.scan.mesh_mm;
-  if (scan.num_faces() > 0 && !scan.has_normals()) scan.N = mesh::vertex_normals(scan.V, scan.F);
-  return scan;
-}
-
-render::Scene overlay_scene_with(const RegisterResult& r, const ReportFigureOptions& o, TriangleMesh scan) {
+/// The overlays of the front, oblique and side figures (drawings, landmarks), without the scan.
+render::Scene overlay_marks(const RegisterResult& r, const ReportFigureOptions& o) {
   render::OverlaySizes sizes(o.size);
   sizes.line_width_px *= 1.3;  // drawings are the point of the figure: a little bolder than `render`
   render::Scene scene;
-  scene.meshes.emplace_back();
-  scene.meshes.back().name = "scan";
-  scene.meshes.back().mesh = std::move(scan);
-
   bool any_off_scan = false;
   for (size_t k = 0; k < r.drawings_on_scan.size(); ++k) {
     const auto& c = r.drawings_on_scan[k];
@@ -168,6 +133,83 @@ render::Scene overlay_scene_with(const RegisterResult& r, const ReportFigureOpti
   render::add_placed_landmarks(scene, placed, r.model_landmarks_mm.points, sizes);
   for (const auto& p : r.model_landmarks_mm.points) scene.points.push_back(render::landmark_point(p.name, p.position, sizes));
   return scene;
+}
+
+render::Scene overlay_scene_with(const RegisterResult& r, const ReportFigureOptions& o, TriangleMesh scan) {
+  render::Scene scene = overlay_marks(r, o);
+  scene.meshes.emplace_back();
+  scene.meshes.back().name = "scan";
+  scene.meshes.back().mesh = std::move(scan);
+  return scene;
+}
+
+/// The six figures in the body frame `frame`; overlay figure k's meshes pass by `layer(k, scene)`
+/// (`scene`: its overlays), the distance figure's here.
+ReportFigures render_figures(const RegisterResult& r, const ReportFigureOptions& o, const mesh::BodyFrame& frame,
+                             const render::Scene& scene, const render::Scene& side_scene,
+                             const std::function<render::Rasterizer(size_t, const render::Scene&)>& layer) {
+  ReportFigures out;
+  out.body_frame = frame.description;
+  out.body_to_world = frame.body_to_world;
+  const auto& specs = overlay_figure_specs();
+  out.figures.resize(specs.size() + 1);
+  for (size_t k = 0; k < specs.size(); ++k) out.figures[k] = {specs[k].id, specs[k].title, specs[k].caption, {}, {}};
+  ReportFigure& dist_fig = out.figures.back();
+  dist_fig = {"distance", "Fitted model: distance to the scan", "", {}, {}};
+
+  auto overlay_figure = [&](size_t k) {
+    ReportFigure& f = out.figures[k];
+    const render::Scene& marks = specs[k].small ? side_scene : scene;
+    f.image = render::finish_scene(layer(k, marks), marks, overlay_render_options(k, o, frame.body_to_world));
+    f.png = f.image.encode_png();
+  };
+  auto distance_figure = [&] {
+    out.distances_mm = model_to_scan_distances(r);
+    const double hi = o.distance_range_mm ? *o.distance_range_mm : distance_scale_mm(out.distances_mm);
+    out.distance_scale_mm = hi;
+    dist_fig.caption = "The fitted model coloured by its distance to the scan, 0 to " + format_mm(hi) +
+                       " mm (dark: close, yellow: far; farther than " + format_mm(hi) + " mm is yellow too" +
+                       (o.distance_range_mm ? "" : "; the scale's top is the 95th percentile of the distances, rounded up") +
+                       "). Grey: no scan to compare with (holes, beyond the scanned area).";
+    render::Scene dist;
+    dist.meshes.emplace_back();
+    dist.meshes.back().name = "fitted";
+    dist.meshes.back().mesh = r.fitted_mm;
+    dist.meshes.back().scalars = distance_field(out.distances_mm, hi);
+    render::RenderOptions ro = figure_render_options(o, frame.body_to_world);
+    ro.view = render::View::Front;
+    ro.title = dist_fig.title;
+    dist_fig.image = render::render_scene(dist, ro);
+    dist_fig.png = dist_fig.image.encode_png();
+  };
+  // Each figure is rendered by one task from shared read-only inputs into its own slot, so the
+  // pixels do not depend on `parallel`. The tasks are taken in order by one worker per core
+  // (more would not finish sooner, only hold more full-size image buffers at once); the two
+  // large figures come first and last, so they are rarely in memory together.
+  run_in_order(specs.size() + 1, o.parallel ? std::thread::hardware_concurrency() : 1, [&](size_t k) {
+    if (k < specs.size())
+      overlay_figure(k);
+    else
+      distance_figure();
+  });
+  return out;
+}
+
+void check_result(const RegisterResult& r, const ReportFigureOptions& o) {
+  o.validate();
+  if (r.fitted_mm.V.rows() == 0 || r.scan.mesh_mm.V.rows() == 0)
+    throw InvalidInput("render_report_figures: the result has no fitted model or no scan");
+}
+
+/// The figures over scan layers: overlay figure k's layer from `layer(k)`.
+ReportFigures render_over_layers(const RegisterResult& r, const mesh::BodyFrame& frame, const ReportFigureOptions& o,
+                                 const std::function<render::Rasterizer(size_t)>& layer) {
+  check_result(r, o);
+  const render::Scene scene = overlay_marks(r, o);
+  ReportFigureOptions side = o;
+  side.size = o.side_size;
+  const render::Scene side_scene = overlay_marks(r, side);
+  return render_figures(r, o, frame, scene, side_scene, [&](size_t k, const render::Scene&) { return layer(k); });
 }
 
 }  // namespace
@@ -207,7 +249,7 @@ Eigen::VectorXd model_to_scan_distances(const RegisterResult& r) {
 }
 
 render::Scene overlay_scene(const RegisterResult& r, const ReportFigureOptions& o) {
-  return overlay_scene_with(r, o, overlay_scan(r));
+  return overlay_scene_with(r, o, overlay_scan(r, body_frame_of(r).body_to_world));
 }
 
 
@@ -238,94 +280,49 @@ render::ScalarField distance_field(const Eigen::VectorXd& distances_mm, double h
   return field;
 }
 
+render::RenderOptions figure_render_options(const ReportFigureOptions& o, const Eigen::Matrix4d& body_to_world) {
+  render::RenderOptions ro;
+  ro.width = o.size;
+  ro.height = o.size;
+  ro.supersample = o.supersample;
+  ro.text_scale = o.text_scale;
+  ro.body_to_world = body_to_world;
+  ro.margin = 0.04;
+  return ro;
+}
+
 ReportFigures render_report_figures(const RegisterResult& r, const ReportFigureOptions& o) {
-  o.validate();
-  if (r.fitted_mm.V.rows() == 0 || r.scan.mesh_mm.V.rows() == 0)
-    throw InvalidInput("render_report_figures: the result has no fitted model or no scan");
-  ReportFigures out;
+  check_result(r, o);
   const mesh::BodyFrame frame = body_frame_of(r);
-  out.body_frame = frame.description;
-  out.body_to_world = frame.body_to_world;
-
-  TriangleMesh scan = overlay_scan(r);
+  TriangleMesh scan = overlay_scan(r, frame.body_to_world);
   const render::Scene scene = overlay_scene_with(r, o, scan);
-  ReportFigureOptions side = o;  // the four side views are shown two to a row: smaller images
+  ReportFigureOptions side = o;  // the side views' overlays are sized for their smaller images
   side.size = o.side_size;
-  side.text_scale = std::max(1, o.text_scale / 2);
   const render::Scene side_scene = overlay_scene_with(r, side, std::move(scan));  // two copies of the scan, not three
-
-  struct Spec {
-    const char* id;
-    const char* title;
-    const char* caption;
-    render::View view;
-    bool small;
-  };
-  static const std::array<Spec, 5> kOverlays = {{
-      {"front", "Front: scan, landmarks, drawings",
-       "The scan seen from the front (the patient's right on the left of the image) with the fitted model's "
-       "landmarks (red, labelled), the landmarks placed on the scan (dark, joined to the fitted ones by a line) and "
-       "the template's drawings transferred onto the scan: breast contours blue, inframammary folds green, sternum "
-       "magenta. Scan parts far outside the torso (table, background) are left out.",
-       render::View::Front, false},
-      {"oblique-right", "Right oblique",
-       "From the patient's front-right, 45 degrees: the lateral side of the right breast and its fold. Parts hidden "
-       "behind the body are drawn faded.",
-       render::View::Oblique, true},
-      {"oblique-left", "Left oblique", "From the patient's front-left, 45 degrees: the left breast and its fold.",
-       render::View::ObliqueLeft, true},
-      {"side-right", "Right side",
-       "The patient's right side (anterior to the right of the image): breast projection, fold and the "
-       "mid-axillary line.",
-       render::View::Side, true},
-      {"side-left", "Left side", "The patient's left side (anterior to the left of the image).",
-       render::View::SideLeft, true},
-  }};
-  out.figures.resize(kOverlays.size() + 1);
-  for (size_t k = 0; k < kOverlays.size(); ++k)
-    out.figures[k] = {kOverlays[k].id, kOverlays[k].title, kOverlays[k].caption, {}, {}};
-  ReportFigure& dist_fig = out.figures.back();
-  dist_fig = {"distance", "Fitted model: distance to the scan", "", {}, {}};
-
-  auto overlay_figure = [&](size_t k) {
-    const Spec& sp = kOverlays[k];
-    ReportFigure& f = out.figures[k];
-    render::RenderOptions ro = base_options(sp.small ? side : o, frame.body_to_world);
-    ro.view = sp.view;
-    ro.title = f.title;
-    f.image = render::render_scene(sp.small ? side_scene : scene, ro);
-    f.png = f.image.encode_png();
-  };
-  auto distance_figure = [&] {
-    out.distances_mm = model_to_scan_distances(r);
-    const double hi = o.distance_range_mm ? *o.distance_range_mm : distance_scale_mm(out.distances_mm);
-    out.distance_scale_mm = hi;
-    dist_fig.caption = "The fitted model coloured by its distance to the scan, 0 to " + format_mm(hi) +
-                       " mm (dark: close, yellow: far; farther than " + format_mm(hi) + " mm is yellow too" +
-                       (o.distance_range_mm ? "" : "; the scale's top is the 95th percentile of the distances, rounded up") +
-                       "). Grey: no scan to compare with (holes, beyond the scanned area).";
-    render::Scene dist;
-    dist.meshes.emplace_back();
-    dist.meshes.back().name = "fitted";
-    dist.meshes.back().mesh = r.fitted_mm;
-    dist.meshes.back().scalars = distance_field(out.distances_mm, hi);
-    render::RenderOptions ro = base_options(o, frame.body_to_world);
-    ro.view = render::View::Front;
-    ro.title = dist_fig.title;
-    dist_fig.image = render::render_scene(dist, ro);
-    dist_fig.png = dist_fig.image.encode_png();
-  };
-  // Each figure is rendered by one task from shared read-only inputs into its own slot, so the
-  // pixels do not depend on `parallel`. The tasks are taken in order by one worker per core
-  // (more would not finish sooner, only hold more full-size image buffers at once); the two
-  // large figures come first and last, so they are rarely in memory together.
-  run_in_order(kOverlays.size() + 1, o.parallel ? std::thread::hardware_concurrency() : 1, [&](size_t k) {
-    if (k < kOverlays.size())
-      overlay_figure(k);
-    else
-      distance_figure();
+  // Framed by everything in the scene, as render_scene does.
+  return render_figures(r, o, frame, scene, side_scene, [&](size_t k, const render::Scene& s) {
+    return render::draw_scene_meshes(s, overlay_render_options(k, o, frame.body_to_world));
   });
-  return out;
+}
+
+ReportFigures render_report_figures(const RegisterResult& r, const ReportLayers& layers, const ReportFigureOptions& o) {
+  return render_over_layers(r, layers.frame, o, [&](size_t k) { return draw_report_layer(layers, k, o); });
+}
+
+ReportFigures report_figures(const RegisterResult& r, const model::RiggedModel& model, const ReportFigureOptions& o,
+                             const std::shared_ptr<ReportLayerDrawing>& drawing) {
+  if (drawing) {
+    const ReportLayers* layers = drawing->layers();
+    if (layers) {
+      const ReportFigureOptions& d = drawing->options();
+      if (d.size != o.size || d.side_size != o.side_size || d.supersample != o.supersample || d.text_scale != o.text_scale)
+        throw InvalidInput("report_figures: the scan layers were drawn with other figure sizes");
+      return render_over_layers(r, layers->frame, o, [&](size_t k) { return drawing->take(k); });
+    }
+  } else if (std::optional<ReportLayers> planned = plan_report_layers(r, model, o)) {
+    return render_report_figures(r, *planned, o);
+  }
+  return render_report_figures(r, o);
 }
 
 }  // namespace breastfit::pipeline

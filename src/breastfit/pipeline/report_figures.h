@@ -10,20 +10,28 @@
 ///  6. front view of the fitted model coloured by its distance to the scan (viridis from 0 to
 ///     the 95th percentile rounded up to a nice number, or a fixed range; grey where the scan has
 ///     no surface to compare with: over holes and beyond the scanned area).
-/// The body frame comes from the fitted model's landmarks (mesh::body_frame_from_landmarks),
-/// else from the fitted model's shape. Deterministic: the same result gives identical pixels.
+/// With a template (a fit initialised from landmarks, report_layers.h) the views are set up from
+/// the template as that initialisation placed it: the body frame from its landmarks, the scan
+/// cropped around it; without one (a landmark-free fit), the body frame comes from the fitted
+/// model's landmarks (mesh::body_frame_from_landmarks), else from the fitted model's shape, and
+/// the crop from the fitted model. Deterministic: the same result gives identical pixels.
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include <Eigen/Core>
 
+#include "breastfit/model/rigged_model.h"
 #include "breastfit/pipeline/register_scan.h"
 #include "breastfit/render/image.h"
 #include "breastfit/render/scene.h"
 
 namespace breastfit::pipeline {
+
+struct ReportLayers;
+class ReportLayerDrawing;
 
 struct ReportFigureOptions {
   int size = 900;                   ///< front and distance figures: square images, pixels (>= 64)
@@ -79,12 +87,35 @@ double distance_scale_mm(const Eigen::VectorXd& distances_mm);
 /// from 0 to `hi_mm`, NaN (no scan to compare with) grey, labelled "distance" in mm.
 render::ScalarField distance_field(const Eigen::VectorXd& distances_mm, double hi_mm);
 
+/// The legend entry of the drawings' pale parts (off the scan).
+inline constexpr const char* kOffScanLegend = "pale: no scan under it";
+
+/// The render options every figure starts from: square `options.size` images, anti-aliasing,
+/// text scale and margin, in the body frame `body_to_world`.
+render::RenderOptions figure_render_options(const ReportFigureOptions& options, const Eigen::Matrix4d& body_to_world);
+
 /// The overlay scene of the front, oblique and side figures: the scan (without what lies more than 40 mm outside the
 /// fitted model's box in the body frame: table, background, far fragments), the fitted
 /// landmarks, the placed landmarks joined to them, and the drawings.
 render::Scene overlay_scene(const RegisterResult& result, const ReportFigureOptions& options = {});
 
-/// Renders the six figures. \throws InvalidInput for invalid options or an empty result.
+/// Renders the six figures, framed from the fitted model (the landmark-free way, for a result
+/// without its template). \throws InvalidInput for invalid options or an empty result.
 ReportFigures render_report_figures(const RegisterResult& result, const ReportFigureOptions& options = {});
+
+/// Renders the six figures over `layers` (plan_report_layers with the same options): their body
+/// frame and scan layers, with the overlays, the distance figure and the PNGs.
+/// \throws InvalidInput for invalid options or an empty result.
+ReportFigures render_report_figures(const RegisterResult& result, const ReportLayers& layers,
+                                    const ReportFigureOptions& options = {});
+
+/// The figures as report.html shows them: over the scan layers of `drawing` (started beside the
+/// fit with the same options; it may have none: landmark-free) or, without one, over
+/// plan_report_layers(result, model) when the fit was initialised from landmarks; otherwise
+/// framed from the fitted model. The same bytes either way.
+/// \throws as render_report_figures; InvalidInput when `drawing` used other figure sizes.
+ReportFigures report_figures(const RegisterResult& result, const model::RiggedModel& model,
+                             const ReportFigureOptions& options = {},
+                             const std::shared_ptr<ReportLayerDrawing>& drawing = nullptr);
 
 }  // namespace breastfit::pipeline

@@ -388,9 +388,9 @@ std::string report_html(const RegisterResult& r, const std::string& template_nam
   return h;
 }
 
-void write_report_html(const std::filesystem::path& path, const RegisterResult& r, const std::string& template_name,
-                       const ReportFigureOptions& options) {
-  const std::string html = report_html(r, template_name, render_report_figures(r, options));
+void write_report_html(const std::filesystem::path& path, const RegisterResult& r, const model::RiggedModel& model,
+                       const ReportFigureOptions& options, const std::shared_ptr<ReportLayerDrawing>& layers) {
+  const std::string html = report_html(r, model.name, report_figures(r, model, options, layers));
   std::ofstream f(path, std::ios::binary);
   if (!f) throw IoError(path.string(), "cannot open for writing");
   f << html;

@@ -26,13 +26,15 @@ std::string html_escape(const std::string& text);
 
 /// The report as one HTML document.
 /// \param template_name  the template's name (model::RiggedModel::name)
-/// \param figures        render_report_figures(result) (embedded in this order)
+/// \param figures        report_figures(result, model) (embedded in this order)
 std::string report_html(const RegisterResult& result, const std::string& template_name,
                         const ReportFigures& figures);
 
-/// Renders the figures and writes report_html to `path`.
+/// Renders the figures (report_figures: over `layers` when given, drawn beforehand with the same
+/// options) and writes report_html to `path`.
 /// \throws IoError if the file cannot be written; InvalidInput for invalid options
 void write_report_html(const std::filesystem::path& path, const RegisterResult& result,
-                       const std::string& template_name, const ReportFigureOptions& options = {});
+                       const model::RiggedModel& model, const ReportFigureOptions& options = {},
+                       const std::shared_ptr<ReportLayerDrawing>& layers = nullptr);
 
 }  // namespace breastfit::pipeline

@@ -395,7 +395,7 @@ std::optional<Eigen::AlignedBox2i> legend_box(const Scene& scene, const RenderOp
   return Eigen::AlignedBox2i(Eigen::Vector2i(L.box.x0, L.box.y0), Eigen::Vector2i(L.box.x1, L.box.y1));
 }
 
-Image render_scene(const Scene& scene, const RenderOptions& o) {
+Rasterizer draw_scene_meshes(const Scene& scene, const RenderOptions& o) {
   o.validate();
   const Camera cam = scene_camera(scene, o);
   const Eigen::AlignedBox3d box = scene.bounds();
@@ -429,6 +429,12 @@ Image render_scene(const Scene& scene, const RenderOptions& o) {
       raster.draw_mesh(m.mesh.V, m.mesh.F, N, C, m.style);
     }
   }
+  return raster;
+}
+
+Image finish_scene(Rasterizer raster, const Scene& scene, const RenderOptions& o) {
+  o.validate();
+  const Camera& cam = raster.camera();
   for (const SceneMesh& m : scene.meshes)
     if (m.wireframe) raster.draw_wireframe(m.mesh.V, m.mesh.F, m.wireframe_style);
   for (const ScenePolyline& l : scene.polylines) {
@@ -468,5 +474,7 @@ Image render_scene(const Scene& scene, const RenderOptions& o) {
   if (!o.title.empty()) draw_text(img, pad, pad, title_text(o), {20, 20, 20}, title_scale(o));
   return img;
 }
+
+Image render_scene(const Scene& scene, const RenderOptions& o) { return finish_scene(draw_scene_meshes(scene, o), scene, o); }
 
 }  // namespace breastfit::render

@@ -114,6 +114,21 @@ Camera scene_camera(const Scene& scene, const RenderOptions& options);
 /// framing (scene_camera) keeps the scene out of it: the legend never covers the body.
 std::optional<Eigen::AlignedBox2i> legend_box(const Scene& scene, const RenderOptions& options);
 
+/// The first of render_scene's two passes: a Rasterizer with the camera scene_camera chooses
+/// and the scene's meshes drawn (shaded, depth buffer filled), nothing else. It may be made
+/// ahead of the rest (e.g. on another thread) from a scene holding only the meshes and what
+/// the framing needs (polylines without points still reserve their legend entries).
+/// \throws InvalidInput as render_scene.
+Rasterizer draw_scene_meshes(const Scene& scene, const RenderOptions& options);
+
+/// The second pass: the scene's wireframes, polylines and points depth-tested against
+/// `raster`'s meshes, then the anti-aliased image with the colour bar, legend, labels,
+/// orientation letters and title. The camera is `raster`'s; `scene` need not repeat the meshes
+/// (only those with a wireframe or scalars matter here).
+/// render_scene(s, o) == finish_scene(draw_scene_meshes(s, o), s, o).
+/// \throws InvalidInput for invalid options.
+Image finish_scene(Rasterizer raster, const Scene& scene, const RenderOptions& options);
+
 /// Renders the scene. Deterministic: the same inputs give identical pixels (and PNG bytes).
 /// \throws InvalidInput for invalid options, mismatched scalar/colour sizes or an empty scene.
 Image render_scene(const Scene& scene, const RenderOptions& options = {});
