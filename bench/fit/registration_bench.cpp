@@ -1,7 +1,7 @@
 // Benchmarks of the registration's parts and of a whole fit, on a synthetic case made from the
 // shipped default template (no external data): scan index build, correspondences, the arm search
-// of the initialisation, normal equations assembly (with and without the blendshapes), posing the
-// template, one LM iteration, the surface-detail layer, and the full registration (what report.json's time_s
+// of the initialisation, normal equations assembly (with and without the blendshapes), one LM
+// iteration, the surface-detail layer, and the full registration (what report.json's time_s
 // measures); the parallel parts with 1 and 2 threads (the last argument).
 #include <benchmark/benchmark.h>
 
@@ -14,7 +14,6 @@
 #include "breastfit/fit/surface_detail.h"
 #include "breastfit/fit/initialization.h"
 #include "breastfit/mesh/landmarks.h"
-#include "breastfit/model/pose_evaluator.h"
 #include "breastfit/model/template_library.h"
 #include "breastfit/pipeline/scan_input.h"
 #include "breastfit/synth/synth_case.h"
@@ -129,26 +128,6 @@ BENCHMARK(BM_NormalEquationsAssembly)
     ->Args({1, 0})
     ->Args({2, 0})
     ->Unit(benchmark::kMillisecond);
-
-// Posing the template: argument 1, a new pose and new blendshape weights every call (the shape
-// and refine stages); 0, a new pose with the same weights (the rigid and pose stages, the arms'
-// search: the shaped vertices are kept).
-void BM_SetParams(benchmark::State& state) {
-  auto& f = fixture();
-  model::PoseEvaluator ev(f.model);
-  model::PoseParams p = f.start;
-  for (Eigen::Index k = 0; k < p.alpha.size(); ++k) p.alpha[k] = 0.1;
-  ev.set_params(p);
-  double t = 0;
-  for (auto _ : state) {
-    t += 1e-3;
-    p.global.translation.x() = t;
-    if (state.range(0) == 1) p.alpha[0] = t;
-    ev.set_params(p);
-    benchmark::DoNotOptimize(ev.vertices().data());
-  }
-}
-BENCHMARK(BM_SetParams)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 
 void BM_OneLmIteration(benchmark::State& state) {
   auto& f = fixture();

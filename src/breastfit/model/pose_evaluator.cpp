@@ -81,21 +81,16 @@ void PoseEvaluator::set_params(const PoseParams& params) {
   // The solver sets the same parameters again (after an accepted step, at a stage's start and
   // end): the posed mesh is already theirs.
   if (posed_.rows() == m.num_vertices() && same_params(params, params_)) return;
-  // The stages that do not move the blendshapes (and the arms' search) change only the pose: B
-  // is kept when the weights are bit for bit the last ones.
-  const bool same_shape = shaped_.rows() == m.num_vertices() && same_bits(params.alpha, params_.alpha);
   params_ = params;
   const Index nv = m.num_vertices();
 
   // B = v + Σ α_k b_k
-  if (!same_shape) {
-    shaped_ = m.rest.V;
-    for (int k = 0; k < m.num_blendshapes(); ++k) {
-      const double a = params.alpha[k];
-      if (a == 0.0) continue;
-      const Blendshape& s = m.blendshapes[k];
-      for (size_t r = 0; r < s.vertices.size(); ++r) shaped_.row(s.vertices[r]) += a * s.displacements.row(r);
-    }
+  shaped_ = m.rest.V;
+  for (int k = 0; k < m.num_blendshapes(); ++k) {
+    const double a = params.alpha[k];
+    if (a == 0.0) continue;
+    const Blendshape& s = m.blendshapes[k];
+    for (size_t r = 0; r < s.vertices.size(); ++r) shaped_.row(s.vertices[r]) += a * s.displacements.row(r);
   }
 
   // Per bone: L_j and the offset o_j = c_j + t_j − L_j c_j, so that L_j (B − c_j) + c_j + t_j = L_j B + o_j.
