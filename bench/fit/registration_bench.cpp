@@ -1,7 +1,7 @@
 // Benchmarks of the registration's parts and of a whole fit, on a synthetic case made from the
 // shipped default template (no external data): scan index build, correspondences, the arm search
-// of the initialisation, normal
-// equations assembly, one LM iteration, the surface-detail layer, and the full registration (what report.json's time_s
+// of the initialisation, normal equations assembly (with and without the blendshapes), one LM
+// iteration, the surface-detail layer, and the full registration (what report.json's time_s
 // measures); the parallel parts with 1 and 2 threads (the last argument).
 #include <benchmark/benchmark.h>
 
@@ -109,6 +109,9 @@ void BM_NormalEquationsAssembly(benchmark::State& state) {
   fit::Problem& problem = *problem_ptr;
   problem.update_correspondences(20.0, 1, true);
   fit::NormalEquations eq(problem.evaluator().layout().num_params());
+  // Second argument 0: the pose stage's parameters (no blendshapes: their Jacobian entries are
+  // left out); 1: every parameter (the shape and refine stages).
+  if (state.range(1) == 0) eq.set_active(fit::active_parameters(problem.evaluator().layout(), options.pose, -1));
   for (auto _ : state) {
     eq.clear();
     problem.evaluate(&eq);
@@ -119,7 +122,12 @@ void BM_NormalEquationsAssembly(benchmark::State& state) {
   state.counters["pairs"] = problem.pairs().size();
   state.counters["threads"] = static_cast<double>(state.range(0));
 }
-BENCHMARK(BM_NormalEquationsAssembly)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_NormalEquationsAssembly)
+    ->Args({1, 1})
+    ->Args({2, 1})
+    ->Args({1, 0})
+    ->Args({2, 0})
+    ->Unit(benchmark::kMillisecond);
 
 void BM_OneLmIteration(benchmark::State& state) {
   auto& f = fixture();

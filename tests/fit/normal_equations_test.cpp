@@ -58,5 +58,17 @@ TEST(NormalEquations, ActiveSubsetMatchesTheSubmatrix) {
   EXPECT_NEAR(sub.cost(), full.cost(), 1e-10);
 }
 
+TEST(NormalEquations, AnyActiveTellsWhetherARangeHasAnActiveParameter) {
+  NormalEquations eq(9);
+  EXPECT_TRUE(eq.any_active(0, 9));
+  eq.set_active({1, 4, 5});
+  EXPECT_TRUE(eq.any_active(4, 9));
+  EXPECT_TRUE(eq.any_active(0, 2));
+  EXPECT_FALSE(eq.any_active(6, 9));
+  EXPECT_FALSE(eq.any_active(2, 4));
+  EXPECT_FALSE(eq.any_active(5, 5));  // empty range
+  EXPECT_FALSE(eq.any_active(7, 20));  // beyond the parameters
+}
+
 }  // namespace
 }  // namespace breastfit::fit

@@ -125,6 +125,31 @@ TEST_F(PoseEvaluatorTest, VertexJacobianMatchesFiniteDifferences) {
   }
 }
 
+TEST_F(PoseEvaluatorTest, VertexJacobianWithoutBlendshapesKeepsTheOtherEntries) {
+  PoseEvaluator e(model);
+  e.set_params(test::random_toy_pose(model, 14));
+  const int first_shape = e.layout().blendshape_offset(0);
+  PointJacobian all, without;
+  int shape_entries = 0;
+  for (Index i = 0; i < model.num_vertices(); ++i) {
+    e.vertex_jacobian(i, all);
+    e.vertex_jacobian(i, without, false);
+    size_t kept = 0;
+    for (size_t k = 0; k < all.params.size(); ++k) {
+      if (all.params[k] >= first_shape) {
+        ++shape_entries;
+        continue;
+      }
+      ASSERT_LT(kept, without.params.size());
+      EXPECT_EQ(without.params[kept], all.params[k]);
+      EXPECT_EQ(without.columns[kept], all.columns[k]);  // the same bits
+      ++kept;
+    }
+    EXPECT_EQ(kept, without.params.size()) << "vertex " << i;
+  }
+  EXPECT_GT(shape_entries, 0) << "the toy model's blendshapes should move some vertices";
+}
+
 TEST_F(PoseEvaluatorTest, SurfacePointJacobianMatchesFiniteDifferences) {
   std::vector<SurfacePoint> pts;
   for (const auto& l : model.landmarks) pts.push_back(l.point);

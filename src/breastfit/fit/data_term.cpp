@@ -21,10 +21,13 @@ double DataTerm::evaluate(const TermContext& ctx, double weight, NormalEquations
   const Points& M = ctx.ev.vertices();
   const double mu = ctx.options.correspondences.point_to_point_weight;
   const double scale = weight / static_cast<double>(std::max<size_t>(1, ctx.pairs.size()));
+  const model::ParamLayout& layout = ctx.ev.layout();
   const auto rows = [&](Index begin, Index end, NormalEquations* part) {
     double cost = 0.0;
     model::PointJacobian jac;
     std::vector<double> vals;
+    // A stage that does not move the blendshapes drops their entries: not computed.
+    const bool shapes = part && part->any_active(layout.blendshape_offset(0), layout.num_params());
     for (Index k = begin; k < end; ++k) {
       const Correspondence& c = ctx.pairs[static_cast<size_t>(k)];
       const Vec3 d = M.row(c.vertex).transpose() - c.target;
@@ -33,7 +36,7 @@ double DataTerm::evaluate(const TermContext& ctx, double weight, NormalEquations
       const double r = c.normal.dot(d);
       cost += w_plane * r * r + w_point * d.squaredNorm();
       if (!part) continue;
-      ctx.ev.vertex_jacobian(c.vertex, jac);
+      ctx.ev.vertex_jacobian(c.vertex, jac, shapes);
       if (w_plane > 0) add_plane_row(jac, d, c.normal, w_plane, *part, vals);
       if (w_point > 0) add_point_rows(jac, d, w_point, *part, vals);
     }

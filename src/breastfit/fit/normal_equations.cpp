@@ -1,5 +1,6 @@
 #include "breastfit/fit/normal_equations.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numeric>
 
@@ -28,6 +29,12 @@ void NormalEquations::set_active(const std::vector<int>& active) {
   block_r_.setZero(kBlockRows);
   buffered_ = 0;
   cost_ = 0.0;
+}
+
+bool NormalEquations::any_active(int begin, int end) const {
+  for (int i = std::max(begin, 0); i < std::min(end, static_cast<int>(column_.size())); ++i)
+    if (column_[i] >= 0) return true;
+  return false;
 }
 
 void NormalEquations::clear() {

@@ -30,6 +30,9 @@ class NormalEquations {
   /// Number of active parameters (size of H and g).
   int size() const { return static_cast<int>(active_.size()); }
   const std::vector<int>& active() const { return active_; }
+  /// Whether any parameter of the full range [begin, end) is active (a term may leave out the
+  /// Jacobian entries of a range no row keeps).
+  bool any_active(int begin, int end) const;
 
   /// Adds weight · (r + Σ_k val_k δ_{idx_k})² : H += w vvᵀ, g += w r v, cost += w r².
   /// idx are full parameter indices; entries of inactive parameters are dropped.

@@ -160,7 +160,7 @@ void PoseEvaluator::append_bone(int j, double w, const Vec3& d, PointJacobian& o
   }
 }
 
-void PoseEvaluator::vertex_jacobian(Index i, PointJacobian& out) const {
+void PoseEvaluator::vertex_jacobian(Index i, PointJacobian& out, bool with_blendshapes) const {
   out.clear();
   append_global(skinned_.row(i).transpose(), out);
   const Vec3 B = shaped_.row(i).transpose();
@@ -169,6 +169,7 @@ void PoseEvaluator::vertex_jacobian(Index i, PointJacobian& out) const {
     const int j = static_cast<int>(it.col());
     append_bone(j, it.value(), B - model_.bones[j].pivot, out);
   }
+  if (!with_blendshapes) return;
   const Mat3& GA = vertex_linear_[i];
   const int base = layout_.blendshape_offset(0);
   for (int e = shape_ptr_[i]; e < shape_ptr_[i + 1]; ++e) {

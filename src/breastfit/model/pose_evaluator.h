@@ -41,8 +41,10 @@ class PoseEvaluator {
   Points vertex_normals() const;
 
   /// Sparse Jacobian of posed vertex i w.r.t. the increment δ of ParamLayout. Entries for the
-  /// 7 global parameters, the 9 parameters of each bone with w_ji > 0, and each blendshape moving i.
-  void vertex_jacobian(Index i, PointJacobian& out) const;
+  /// 7 global parameters, the 9 parameters of each bone with w_ji > 0, and each blendshape moving i
+  /// (`with_blendshapes` false: without the blendshapes' entries, for a caller that drops them,
+  /// e.g. a stage that does not move them; the other entries are the same).
+  void vertex_jacobian(Index i, PointJacobian& out, bool with_blendshapes = true) const;
 
   /// Position and Jacobian of a surface point (barycentric blend of its triangle's corners).
   Vec3 surface_point(const SurfacePoint& p) const;
