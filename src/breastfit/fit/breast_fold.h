@@ -18,7 +18,7 @@
 /// (lowest_breast_by_proportion): on the 60 lowest breast points of the 30 benchmark and generated
 /// torsos its height below the sternal notch, along the sternum, is 1.277 ± 0.018 sternum lengths
 /// (notch to xiphoid; 4 mm), and 0.356 × the nipple's height below the notch + 198 mm ± 7 mm (a
-/// hanging breast's fold lies lower); the fitted xiphoid is 5–10 mm off, so the two are averaged.
+/// hanging breast's fold lies lower); the fitted xiphoid is 5–15 mm off, so the two are averaged.
 /// On the scan the point is the skin's front in a sagittal strip through the fitted point at that
 /// height. Where the lower profile changes slope (the steep lower pole meeting the chest wall) is
 /// no guide to it: that break lies 30–60 mm below the nipple on most of those torsos, where the
