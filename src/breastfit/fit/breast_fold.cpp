@@ -50,4 +50,34 @@ std::optional<Vec3> lowest_breast_on_scan(const Points& scan_vertices, const Vec
   return std::nullopt;
 }
 
+double lowest_breast_drop_mm(const SternumFrame& frame, double nipple_drop_mm,
+                             const BreastFoldProportionOptions& options) {
+  const double by_sternum = options.sternum_drop * frame.length_mm;
+  const double by_nipple = options.nipple_slope * nipple_drop_mm + options.nipple_offset_mm;
+  return (1 - options.nipple_share) * by_sternum + options.nipple_share * by_nipple;
+}
+
+std::optional<Vec3> lowest_breast_by_proportion(const Points& scan_vertices, const Vec3& tip, const Vec3& fitted_lowest,
+                                                const SternumFrame& frame, const BreastFoldProportionOptions& options) {
+  if (!(frame.length_mm > 0)) return std::nullopt;
+  const SternumCoordinates fitted = sternum_coordinates(frame, fitted_lowest);
+  const SternumCoordinates at_tip = sternum_coordinates(frame, tip);
+  const double height = -lowest_breast_drop_mm(frame, -at_tip.height, options);
+  const double front_limit = at_tip.front + options.max_in_front_of_tip_mm;
+  Index best = -1;
+  double front = -std::numeric_limits<double>::infinity();
+  for (Index i = 0; i < scan_vertices.rows(); ++i) {
+    const SternumCoordinates p = sternum_coordinates(frame, scan_vertices.row(i).transpose());
+    if (std::abs(p.height - height) > options.height_half_window_mm ||
+        std::abs(p.lateral - fitted.lateral) > options.strip_half_width_mm || p.front > front_limit || p.front <= front)
+      continue;
+    front = p.front;
+    best = i;
+  }
+  if (best < 0) return std::nullopt;
+  const Vec3 found = scan_vertices.row(best).transpose();
+  if ((found - fitted_lowest).norm() > options.max_shift_mm) return std::nullopt;
+  return found;
+}
+
 }  // namespace breastfit::fit

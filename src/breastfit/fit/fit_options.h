@@ -161,9 +161,10 @@ struct FitOptions {
   /// Landmark-free (fewer than 3 landmarks): after the pose stage, each nipple not given is held
   /// at the breast's tip found on the scan (landmark_check.h) for the shape and refine stages.
   bool anatomical_nipples = true;
-  /// Landmark-free (fewer than 3 landmarks): each lowest breast point not given is held, from the
-  /// shape stage on, at the fold found on the scan below the nipple (breast_fold.h), when the
-  /// detector is sure; otherwise it is left to the fit.
+  /// Each lowest breast point not given (landmark-free or a subset) is held, for the shape stage, at
+  /// the fold found on the scan below the nipple and, for the refine stage, at the point the
+  /// sternum's and the nipple's proportions give on the scan (breast_fold.h), when the detectors are
+  /// sure; otherwise it is left to the fit.
   bool anatomical_lowest_breast = true;
   /// When the sternal notch is not given: it is held, from the shape stage on, where the
   /// manubrium meets the neck on the scan's midline (jugular_notch.h), when the detector is sure.

@@ -248,6 +248,34 @@ std::optional<Vec3> held_or_posed(const model::RiggedModel& model, const Points&
   return model_landmark_position(model, *idx, V, params);
 }
 
+// The lowest breast points not given, placed again once the shape is fitted: by proportions of
+// the held notch, the fitted xiphoid and the held nipples (breast_fold.h); each replaces the fold's
+// target in `held` when found.
+void place_folds_by_proportion(const model::RiggedModel& model, const Points& V, const model::PoseParams& params,
+                               const ScanTarget& scan, const std::vector<LandmarkTarget>& given,
+                               std::vector<LandmarkTarget>& held) {
+  const auto notch = held_or_posed(model, V, params, held, "sternal_notch");
+  const auto xiphoid = held_or_posed(model, V, params, held, "xiphoid");
+  const auto right = held_or_posed(model, V, params, held, "nipple_R");
+  const auto left = held_or_posed(model, V, params, held, "nipple_L");
+  if (!notch || !xiphoid || !right || !left) return;
+  for (const char side : {'R', 'L'}) {
+    const std::string name = std::string("lowest_breast_") + side;
+    const auto idx = model.landmark_index(name);
+    const auto frame = sternum_frame(*notch, *xiphoid, *right, *left, side);
+    if (!idx || !frame || is_given(given, name)) continue;
+    const Vec3 fitted = model_landmark_position(model, *idx, V, params);
+    const auto fold = lowest_breast_by_proportion(scan.mesh().V, side == 'R' ? *right : *left, fitted, *frame);
+    if (!fold) continue;
+    const LandmarkTarget target{name, *idx, *fold, landmark_weight(name)};
+    const auto at = std::find_if(held.begin(), held.end(), [&](const LandmarkTarget& t) { return t.name == name; });
+    if (at != held.end())
+      *at = target;
+    else
+      held.push_back(target);
+  }
+}
+
 // The pectoral insertion of a hanging arm on the scan: at the anterior axillary fold
 // (pectoral_insertion.h), moved along the arm to the sternum's proportion (shoulder_landmarks.h).
 std::optional<Vec3> hanging_insertion(const model::RiggedModel& model, const Points& V, const model::PoseParams& params,
@@ -573,16 +601,19 @@ FitResult register_template(const model::RiggedModel& model, ScanTarget& scan, s
       summary.anatomical_landmarks = static_cast<int>(held.size() - landmarks.size());
       for (size_t i = landmarks.size(); i < held.size(); ++i) summary.anatomical_landmark_names.push_back(held[i].name);
       problem_ptr = std::make_unique<Problem>(model, scan, options, held);
-      if (hold_shoulders) {
+      if (hold_shoulders || hold_folds) {
         // The shoulder's landmarks once the shape is fitted (from the posed model the sternum is
-        // too short and the mid-axillary points came out higher), held for the refine stage.
+        // too short and the mid-axillary points came out higher), held for the refine stage; the
+        // folds placed again there by proportions.
         summary.termination = minimize_stages(*problem_ptr, {coarse_end, coarse_end + 1}, params, summary, on_iteration);
         if (summary.termination != Termination::Aborted && summary.termination != Termination::NumericalFailure) {
           problem_ptr->evaluator().set_params(params);
+          const Points& shaped = problem_ptr->evaluator().vertices();
           const size_t before = held.size();
-          for (auto& t : shoulder_targets(model, problem_ptr->evaluator().vertices(), params, scan, held,
-                                          summary.orientation.arm_pose))
-            held.push_back(t);
+          if (hold_folds) place_folds_by_proportion(model, shaped, params, scan, landmarks, held);
+          if (hold_shoulders)
+            for (auto& t : shoulder_targets(model, shaped, params, scan, held, summary.orientation.arm_pose))
+              held.push_back(t);
           for (size_t i = before; i < held.size(); ++i) summary.anatomical_landmark_names.push_back(held[i].name);
           summary.anatomical_landmarks = static_cast<int>(held.size() - landmarks.size());
           problem_ptr = std::make_unique<Problem>(model, scan, options, held);
