@@ -3,6 +3,7 @@
 // the shipped template fitted to a default synthetic case (seed 7, standing), computed once per
 // test program.
 #include "support/default_template.h"
+#include "support/synth_request.h"
 #include "breastfit/model/template_library.h"
 #include "breastfit/pipeline/register_scan.h"
 #include "breastfit/synth/synth_case.h"
@@ -10,17 +11,6 @@
 namespace breastfit::test {
 
 inline const model::RiggedModel& report_test_model() { return *test::default_template(); }
-
-/// A registration request for a synthetic case: its scan and landmarks, the shipped template.
-inline pipeline::RegisterRequest synth_request(const synth::SynthCase& c) {
-  pipeline::RegisterRequest req;
-  req.scan = c.scan;
-  req.model = test::default_template();
-  LandmarkSet lms;
-  lms.points = c.input_landmarks;
-  req.landmarks = lms;
-  return req;
-}
 
 inline const pipeline::RegisterResult& report_test_result() {
   static const pipeline::RegisterResult r = [] {

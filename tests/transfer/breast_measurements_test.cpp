@@ -144,6 +144,7 @@ TEST(BreastMeasurements, TemplateIsSymmetricAndTracksBreastShapes) {
 // template: same region, same chest-wall rule), on synthetic cases: the error the fit adds.
 #include "breastfit/pipeline/register_scan.h"
 #include "breastfit/synth/synth_case.h"
+#include "support/synth_request.h"
 
 namespace breastfit::transfer {
 namespace {
@@ -156,13 +157,7 @@ TEST(BreastMeasurements, FittedVolumeOnSynthCases) {
     o.seed = seed;
     o.pose = seed % 2 ? synth::PoseType::Standing : synth::PoseType::Supine;
     const synth::SynthCase c = synth::make_case(torso(), o);
-    pipeline::RegisterRequest req;
-    req.scan = c.scan;
-    req.model = test::default_template();
-    LandmarkSet lms;
-    lms.points = c.input_landmarks;
-    req.landmarks = lms;
-    const pipeline::RegisterResult r = pipeline::register_scan(req);
+    const pipeline::RegisterResult r = pipeline::register_scan(test::synth_request(c));
     ASSERT_TRUE(r.usable());
     const BreastMeasurements fitted = measure_breasts(torso(), r.fit.vertices);
     const BreastMeasurements truth = measure_breasts(torso(), model::pose_vertices(torso(), c.true_params_scan));
