@@ -527,6 +527,13 @@ PlacedCheck hold_off_misplaced(const model::RiggedModel& model, ScanTarget& scan
 
 }  // namespace
 
+std::vector<LandmarkTarget> select_landmarks(std::vector<LandmarkTarget> targets, const FitOptions& options) {
+  if (!options.use_landmarks) return {};
+  if (options.max_landmarks >= 0 && static_cast<int>(targets.size()) > options.max_landmarks)
+    targets.resize(static_cast<size_t>(options.max_landmarks));
+  return targets;
+}
+
 FitResult register_template(const model::RiggedModel& model, ScanTarget& scan, std::vector<LandmarkTarget> landmarks,
                             const FitOptions& options, const IterationCallback& on_iteration) {
   options.validate();
@@ -534,9 +541,7 @@ FitResult register_template(const model::RiggedModel& model, ScanTarget& scan, s
   FitResult result;
   FitSummary& summary = result.summary;
 
-  if (!options.use_landmarks) landmarks.clear();
-  if (options.max_landmarks >= 0 && static_cast<int>(landmarks.size()) > options.max_landmarks)
-    landmarks.resize(options.max_landmarks);
+  landmarks = select_landmarks(std::move(landmarks), options);
 
   model::PoseParams params = model::PoseParams::identity(model);
   if (landmarks.size() >= 3) {

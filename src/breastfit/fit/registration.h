@@ -44,6 +44,10 @@ struct FitResult {
 std::vector<LandmarkTarget> match_landmarks(const model::RiggedModel& model,
                                             const std::vector<std::pair<std::string, Vec3>>& landmarks_mm);
 
+/// The landmarks register_template fits, of `targets`: none without options.use_landmarks, at most
+/// options.max_landmarks (the first ones, in the paper's order).
+std::vector<LandmarkTarget> select_landmarks(std::vector<LandmarkTarget> targets, const FitOptions& options);
+
 /// Registers `model` to `scan`. Landmarks may be empty (landmark-free initialisation).
 /// Orients the scan's normals (ScanTarget::set_normal_sign) to agree with the template's.
 /// How the solver ended is summary.termination; whether the result is usable is summary.verdict

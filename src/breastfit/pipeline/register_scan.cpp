@@ -34,10 +34,7 @@ std::string fmt(double v) {
 
 std::vector<fit::LandmarkTarget> initialization_landmarks(std::vector<fit::LandmarkTarget> targets,
                                                           const fit::FitOptions& options) {
-  if (!options.use_landmarks) return {};
-  if (options.max_landmarks >= 0 && static_cast<int>(targets.size()) > options.max_landmarks)
-    targets.resize(static_cast<size_t>(options.max_landmarks));
-  return targets;
+  return fit::select_landmarks(std::move(targets), options);
 }
 
 PreparedTarget prepare_target(const TriangleMesh& scan, const std::string& scan_name,

@@ -85,7 +85,7 @@ struct RegisterResult {
 };
 
 /// The landmarks a fit's initialisation places the template by, of `targets` (fit::match_landmarks),
-/// as fit::register_template selects them (options.use_landmarks, options.max_landmarks); fewer
+/// as fit::register_template selects them (fit::select_landmarks); fewer
 /// than 3: a landmark-free initialisation.
 std::vector<fit::LandmarkTarget> initialization_landmarks(std::vector<fit::LandmarkTarget> targets,
                                                           const fit::FitOptions& options);
