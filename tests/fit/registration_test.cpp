@@ -347,3 +347,36 @@ TEST(Registration, LandmarkFreeHoldsTheShouldersLandmarksWithTheArmsOnBoards) {
 
 }  // namespace
 }  // namespace breastfit::fit
+
+namespace breastfit::fit {
+namespace {
+
+// With a subset of the landmarks (the notch and the nipples) the anatomy held for the refine stage
+// is placed again on the refined model and the refine stage runs a second time; with all the
+// landmarks given nothing is held and it runs once.
+TEST(Registration, ASubsetOfLandmarksPlacesTheAnatomyAgainAfterTheRefineStage) {
+  const synth::SynthCase& c = test_anatomy::synth_case(synth::PoseType::Supine);
+  const model::RiggedModel& m = *test::default_template();
+  std::vector<std::pair<std::string, Vec3>> three, all;
+  for (const auto& p : c.input_landmarks) {
+    all.emplace_back(p.name, p.position);
+    if (p.name == "sternal_notch" || p.name == "nipple_R" || p.name == "nipple_L") three.emplace_back(p.name, p.position);
+  }
+  ASSERT_EQ(three.size(), 3u);
+  const auto refines = [](const FitResult& r) {
+    return std::count_if(r.summary.stages.begin(), r.summary.stages.end(),
+                         [](const StageSummary& s) { return s.name == "refine"; });
+  };
+  ScanTarget scan(c.scan);
+  const FitResult subset = register_template(m, scan, match_landmarks(m, three), FitOptions{});
+  EXPECT_EQ(refines(subset), 2);
+  const auto& names = subset.summary.anatomical_landmark_names;
+  for (const char* name : {"acromion_R", "midaxillary_L", "pectoral_insertion_R", "lowest_breast_L"})
+    EXPECT_NE(std::find(names.begin(), names.end(), name), names.end()) << name;
+  ScanTarget again(c.scan);
+  const FitResult given = register_template(m, again, match_landmarks(m, all), FitOptions{});
+  EXPECT_EQ(refines(given), 1);
+}
+
+}  // namespace
+}  // namespace breastfit::fit
