@@ -171,7 +171,8 @@ struct FitOptions {
   bool anatomical_notch = true;
   /// Fewer than all the landmarks: after the shape stage the acromia, mid-axillary points (arms on boards) and pectoral
   /// insertions not given are held for the refine stage where the scan shows them (shoulder_landmarks.h: the sternum's
-  /// proportions; arms hanging, the insertion at the anterior axillary fold: pectoral_insertion.h), when found.
+  /// proportions; arms hanging, the insertion at the anterior axillary fold: pectoral_insertion.h), when found. With 3 or
+  /// more (but not all) landmarks given, they are placed again on the refined model and the refine stage runs once more.
   bool anatomical_shoulders = true;
   double max_surface_mae_mm = 8.0;   ///< a final kept-correspondence MAE above this = not usable
   double min_kept_fraction = 0.25;   ///< fewer kept correspondences than this share = not usable
