@@ -139,7 +139,7 @@ std::shared_ptr<ReportLayerDrawing> start_report_layers(const PreparedScan& scan
                                                         const fit::FitOptions& fit_options, TemplateSource model,
                                                         const ReportFigureOptions& options);
 
-/// start_report_layers for `request`'s registation on `target` (after its index is built; the
+/// start_report_layers for `request`'s registration on `target` (after its index is built; the
 /// template `request.model`, which must be set).
 std::shared_ptr<ReportLayerDrawing> start_report_layers(const RegisterRequest& request, const PreparedTarget& target,
                                                         const ReportFigureOptions& options);
