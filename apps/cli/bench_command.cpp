@@ -292,9 +292,12 @@ void register_bench(CLI::App& app, int& exit_code) {
         Timer full;
         const double cpu_full = process_cpu_s();
         const pipeline::RegisterRequest full_req = read_request();
-        pipeline::PreparedTarget target = pipeline::prepare_target(full_req.scan, full_req.scan_name, {}, options);
         pipeline::RegisterOutputOptions with_layers = full_options;
-        with_layers.layers = pipeline::start_report_layers(full_req, target, full_options.figures);
+        pipeline::PreparedTarget target =
+            pipeline::prepare_target(full_req.scan, full_req.scan_name, {}, options, [&](const pipeline::PreparedScan& scan) {
+              with_layers.layers = pipeline::start_report_layers(scan, full_req.landmarks, full_req.options,
+                                                                 [m = full_req.model] { return m; }, full_options.figures);
+            });
         const pipeline::RegisterResult full_result = pipeline::register_prepared(full_req, target);
         if (full_result.usable()) pipeline::write_register_outputs(scratch, full_result, *model, true, {}, with_layers);
         fulls.push_back(full.seconds());

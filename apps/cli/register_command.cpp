@@ -58,7 +58,7 @@ void register_register(CLI::App& app, int& exit_code) {
       std::shared_ptr<const model::RiggedModel> model;
       pipeline::Provenance provenance;
     };
-    std::future<Loaded> loaded = std::async(std::launch::async, [args] {
+    std::shared_future<Loaded> loaded = std::async(std::launch::async, [args] {
       Loaded l;
       l.model = std::make_shared<const model::RiggedModel>(load_template(args->template_path, args->template_mesh));
       l.provenance = pipeline::start_provenance(
@@ -68,7 +68,7 @@ void register_register(CLI::App& app, int& exit_code) {
            {"template", args->template_path.empty() ? model::default_template_path() : fs::path(args->template_path)},
            {"config", args->config}});
       return l;
-    });
+    }).share();
 
     pipeline::RegisterRequest req;
     req.scan = io::read_mesh(args->scan);
@@ -76,12 +76,22 @@ void register_register(CLI::App& app, int& exit_code) {
     req.units = parse_units_flag(args->units);
     req.landmarks_name = args->landmarks;
     if (!args->landmarks.empty() && !args->no_landmarks) req.landmarks = read_landmarks_warning(args->landmarks);
+    pipeline::RegisterOutputOptions output_options;
+    output_options.report_html = !args->no_report_html;
+    // The report's overlay figures' scan layers are drawn on a thread of their own from when the
+    // scan is prepared (before its index is built, the template perhaps still loading) while the
+    // fit runs; nothing when the fit will be landmark-free.
+    auto start_layers = [&](const pipeline::PreparedScan& scan) {
+      if (output_options.report_html)
+        output_options.layers = pipeline::start_report_layers(
+            scan, req.landmarks, req.options, [loaded] { return loaded.get().model; }, output_options.figures);
+    };
     std::exception_ptr later_error;
     pipeline::PreparedTarget target;
     try {
       req.options = load_fit_options(args->config, args->fit);
       if (args->no_landmarks) req.options.use_landmarks = false;
-      target = pipeline::prepare_target(req.scan, req.scan_name, req.units, req.options);
+      target = pipeline::prepare_target(req.scan, req.scan_name, req.units, req.options, start_layers);
     } catch (...) {
       later_error = std::current_exception();
     }
@@ -91,11 +101,6 @@ void register_register(CLI::App& app, int& exit_code) {
     req.provenance = std::move(l.provenance);
     const model::RiggedModel& model = *req.model;
 
-    pipeline::RegisterOutputOptions output_options;
-    output_options.report_html = !args->no_report_html;
-    // The report's overlay figures' scan layers are drawn on a thread of their own while the
-    // fit runs; nothing when the fit will be landmark-free.
-    if (output_options.report_html) output_options.layers = pipeline::start_report_layers(req, target, output_options.figures);
     auto result = pipeline::register_prepared(req, target, progress_printer(args->quiet));
     result.time_s += target.timings.back().seconds;  // as register_scan: the index build included
     if (!result.usable()) {

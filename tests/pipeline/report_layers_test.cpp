@@ -4,6 +4,8 @@
 // thread or several), the plan's errors, the crop, and the legend clear of the body.
 #include "breastfit/pipeline/report_layers.h"
 
+#include <future>
+
 #include <gtest/gtest.h>
 
 #include "breastfit/core/errors.h"
@@ -130,6 +132,44 @@ TEST(ReportLayers, StartedBesideTheFitGiveTheReportsFigures) {
   EXPECT_EQ(none->layers(), nullptr);
   expect_same_pngs(pipeline::report_figures(r, model, small_options(), none),
                    pipeline::render_report_figures(r, small_options()));
+}
+
+TEST(ReportLayers, StartedBeforeTheIndexWhileTheTemplateLoadsTheSameFigures) {
+  const auto& model = test::report_test_model();
+  synth::SynthOptions so;
+  so.seed = 12;
+  pipeline::RegisterRequest req = test::synth_request(synth::make_case(model, so));
+  // As `register` starts them: from the prepared scan, before the index is built, the template
+  // still loading (here: given only after the index is built).
+  std::promise<std::shared_ptr<const model::RiggedModel>> loading;
+  std::shared_future<std::shared_ptr<const model::RiggedModel>> loaded = loading.get_future().share();
+  std::shared_ptr<pipeline::ReportLayerDrawing> early;
+  bool seen_before_index = false;
+  pipeline::PreparedTarget target =
+      pipeline::prepare_target(req.scan, req.scan_name, {}, req.options, [&](const pipeline::PreparedScan& scan) {
+        seen_before_index = true;
+        EXPECT_EQ(scan.mesh_mm.num_faces(), req.scan.num_faces());
+        early = pipeline::start_report_layers(scan, req.landmarks, req.options, [loaded] { return loaded.get(); },
+                                              small_options());
+      });
+  ASSERT_TRUE(seen_before_index);
+  loading.set_value(req.model);
+  auto after_index = pipeline::start_report_layers(req, target, small_options());
+  const pipeline::RegisterResult r = pipeline::register_prepared(req, target);
+  ASSERT_NE(early->layers(), nullptr);
+  const pipeline::ReportFigures after = pipeline::report_figures(r, model, small_options());
+  expect_same_pngs(pipeline::report_figures(r, model, small_options(), early), after);
+  expect_same_pngs(pipeline::report_figures(r, model, small_options(), after_index), after);
+
+  // The template's error comes from layers(); a landmark-free fit starts nothing.
+  auto failing = pipeline::start_report_layers(
+      target.scan, req.landmarks, req.options,
+      []() -> std::shared_ptr<const model::RiggedModel> { throw IoError("torso.glb", "cannot read"); }, small_options());
+  EXPECT_THROW(failing->layers(), IoError);
+  EXPECT_EQ(pipeline::start_report_layers(target.scan, std::nullopt, req.options, [] { return test::default_template(); },
+                                          small_options())
+                ->layers(),
+            nullptr);
 }
 
 TEST(ReportLayers, TheCropLeavesOutFarFragments) {

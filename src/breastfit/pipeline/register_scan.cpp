@@ -38,12 +38,14 @@ std::vector<fit::LandmarkTarget> initialization_landmarks(std::vector<fit::Landm
 }
 
 PreparedTarget prepare_target(const TriangleMesh& scan, const std::string& scan_name,
-                              std::optional<mesh::Units> units, const fit::FitOptions& options) {
+                              std::optional<mesh::Units> units, const fit::FitOptions& options,
+                              const std::function<void(const PreparedScan&)>& before_index) {
   PreparedTarget t;
   t.scan_name = scan_name;
   Timer phase;
   t.scan = prepare_scan(scan, scan_name, units);
   t.timings.push_back({"scan_preparation", phase.seconds()});
+  if (before_index) before_index(t.scan);
   phase.reset();
   t.target = std::make_unique<fit::ScanTarget>(t.scan.mesh_mm, options.correspondences.reverse_samples,
                                                 options.threads);

@@ -107,10 +107,12 @@ struct PreparedTarget {
   std::shared_ptr<transfer::VolumeCache> volumes = std::make_shared<transfer::VolumeCache>();
 };
 
-/// Prepares `scan` (file units) and builds its index with `options`' reverse-term samples.
-/// \throws InvalidInput as register_scan for a bad scan.
+/// Prepares `scan` (file units) and builds its index with `options`' reverse-term samples;
+/// `before_index` sees the prepared scan before the index is built (`register` starts the
+/// report's layers there: report_layers.h). \throws InvalidInput as register_scan for a bad scan.
 PreparedTarget prepare_target(const TriangleMesh& scan, const std::string& scan_name,
-                              std::optional<mesh::Units> units, const fit::FitOptions& options = {});
+                              std::optional<mesh::Units> units, const fit::FitOptions& options = {},
+                              const std::function<void(const PreparedScan&)>& before_index = {});
 
 /// Sees a warm re-fit's first result (RegisterResult::complete false; its `scan` empty), on the
 /// fitting thread, before the rest is computed.

@@ -147,7 +147,8 @@ render::Scene overlay_scene_with(const RegisterResult& r, const ReportFigureOpti
 /// (`scene`: its overlays), the distance figure's here.
 ReportFigures render_figures(const RegisterResult& r, const ReportFigureOptions& o, const mesh::BodyFrame& frame,
                              const render::Scene& scene, const render::Scene& side_scene,
-                             const std::function<render::Rasterizer(size_t, const render::Scene&)>& layer) {
+                             const std::function<render::Rasterizer(size_t, const render::Scene&)>& layer,
+                             bool distance_first = false) {
   ReportFigures out;
   out.body_frame = frame.description;
   out.body_to_world = frame.body_to_world;
@@ -186,9 +187,14 @@ ReportFigures render_figures(const RegisterResult& r, const ReportFigureOptions&
   // pixels do not depend on `parallel`. The tasks are taken in order by one worker per core
   // (more would not finish sooner, only hold more full-size image buffers at once); the two
   // large figures come first and last, so they are rarely in memory together.
-  run_in_order(specs.size() + 1, o.parallel ? std::thread::hardware_concurrency() : 1, [&](size_t k) {
-    if (k < specs.size())
-      overlay_figure(k);
+  // With `distance_first` (the layers drawn on a thread of their own, which may still be drawing
+  // the last ones) the distance figure, which needs no layer, comes first, so that a worker does
+  // not wait for a layer under way while it could be drawing it.
+  const size_t n = specs.size() + 1;
+  run_in_order(n, o.parallel ? std::thread::hardware_concurrency() : 1, [&](size_t k) {
+    const size_t figure = distance_first ? (k + n - 1) % n : k;
+    if (figure < specs.size())
+      overlay_figure(figure);
     else
       distance_figure();
   });
@@ -203,13 +209,14 @@ void check_result(const RegisterResult& r, const ReportFigureOptions& o) {
 
 /// The figures over scan layers: overlay figure k's layer from `layer(k)`.
 ReportFigures render_over_layers(const RegisterResult& r, const mesh::BodyFrame& frame, const ReportFigureOptions& o,
-                                 const std::function<render::Rasterizer(size_t)>& layer) {
+                                 const std::function<render::Rasterizer(size_t)>& layer, bool distance_first = false) {
   check_result(r, o);
   const render::Scene scene = overlay_marks(r, o);
   ReportFigureOptions side = o;
   side.size = o.side_size;
   const render::Scene side_scene = overlay_marks(r, side);
-  return render_figures(r, o, frame, scene, side_scene, [&](size_t k, const render::Scene&) { return layer(k); });
+  return render_figures(r, o, frame, scene, side_scene, [&](size_t k, const render::Scene&) { return layer(k); },
+                        distance_first);
 }
 
 }  // namespace
@@ -317,7 +324,7 @@ ReportFigures report_figures(const RegisterResult& r, const model::RiggedModel& 
       const ReportFigureOptions& d = drawing->options();
       if (d.size != o.size || d.side_size != o.side_size || d.supersample != o.supersample || d.text_scale != o.text_scale)
         throw InvalidInput("report_figures: the scan layers were drawn with other figure sizes");
-      return render_over_layers(r, layers->frame, o, [&](size_t k) { return drawing->take(k); });
+      return render_over_layers(r, layers->frame, o, [&](size_t k) { return drawing->take(k); }, true);
     }
   } else if (std::optional<ReportLayers> planned = plan_report_layers(r, model, o)) {
     return render_report_figures(r, *planned, o);

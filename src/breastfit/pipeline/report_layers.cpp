@@ -49,31 +49,28 @@ render::RenderOptions overlay_render_options(size_t k, const ReportFigureOptions
   return ro;
 }
 
-TriangleMesh crop_scan(const TriangleMesh& scan, const Eigen::AlignedBox3d& box, const Eigen::Matrix4d& body_to_world) {
+TriangleMesh crop_scan(TriangleMesh scan, const Eigen::AlignedBox3d& box, const Eigen::Matrix4d& body_to_world) {
   const Eigen::Matrix4d world_to_body = body_to_world.inverse();
   const Eigen::Matrix3d R = world_to_body.topLeftCorner<3, 3>();
   const Vec3 t = world_to_body.topRightCorner<3, 1>();
   std::vector<char> inside(static_cast<size_t>(scan.V.rows()));
   for (Eigen::Index i = 0; i < scan.V.rows(); ++i) inside[i] = box.contains(R * scan.V.row(i).transpose() + t);
-  TriangleMesh out;
-  out.V = scan.V;
-  if (scan.has_normals()) out.N = scan.N;
-  if (scan.has_colors()) out.C = scan.C;
-  out.F.resize(scan.F.rows(), 3);
-  Eigen::Index kept = 0;
+  Eigen::Index kept = 0;  // the kept triangles moved to the front, in order
   for (Eigen::Index f = 0; f < scan.F.rows(); ++f)
-    if (inside[scan.F(f, 0)] && inside[scan.F(f, 1)] && inside[scan.F(f, 2)]) out.F.row(kept++) = scan.F.row(f);
-  if (kept == 0) {
-    out = scan;
-  } else {
-    out.F.conservativeResize(kept, 3);
-    mesh::remove_unreferenced_vertices(out);
+    if (inside[scan.F(f, 0)] && inside[scan.F(f, 1)] && inside[scan.F(f, 2)]) scan.F.row(kept++) = scan.F.row(f);
+  if (kept > 0) {  // what the crop keeps: positions, triangles, and the normals and colours that are whole
+    if (!scan.has_normals()) scan.N.resize(0, 3);
+    if (!scan.has_colors()) scan.C.resize(0, 3);
+    scan.UV.resize(0, 2);
+    scan.FUV.resize(0, 3);
+    scan.F.conservativeResize(kept, 3);
+    mesh::remove_unreferenced_vertices(scan);
   }
-  if (out.num_faces() > 0 && !out.has_normals()) out.N = mesh::vertex_normals(out.V, out.F);
-  return out;
+  if (scan.num_faces() > 0 && !scan.has_normals()) scan.N = mesh::vertex_normals(scan.V, scan.F);
+  return scan;
 }
 
-std::optional<ReportLayers> plan_report_layers(const TriangleMesh& scan_mm, const model::RiggedModel& model,
+std::optional<ReportLayers> plan_report_layers(TriangleMesh scan_mm, const model::RiggedModel& model,
                                                std::vector<fit::LandmarkTarget> landmarks,
                                                const ReportFigureOptions& options) {
   options.validate();
@@ -106,7 +103,7 @@ std::optional<ReportLayers> plan_report_layers(const TriangleMesh& scan_mm, cons
 
   render::SceneMesh scan;
   scan.name = "scan";
-  scan.mesh = crop_scan(scan_mm, box, layers.frame.body_to_world);
+  scan.mesh = crop_scan(std::move(scan_mm), box, layers.frame.body_to_world);
   layers.scan_scene.meshes.push_back(std::move(scan));
   for (const model::Drawing& d : model.drawings) {  // the legend's band: no points, only names
     render::ScenePolyline entry;
@@ -175,17 +172,26 @@ render::Rasterizer ReportLayerDrawing::take(size_t k) {
   return drawn_future_[k].get();
 }
 
-std::shared_ptr<ReportLayerDrawing> start_report_layers(const RegisterRequest& req, const PreparedTarget& target,
+std::shared_ptr<ReportLayerDrawing> start_report_layers(const PreparedScan& scan, const std::optional<LandmarkSet>& landmarks,
+                                                        const fit::FitOptions& fit_options, TemplateSource model,
                                                         const ReportFigureOptions& options) {
+  if (!landmarks || !fit_options.use_landmarks)  // a landmark-free fit: no copy of the scan
+    return std::make_shared<ReportLayerDrawing>([] { return std::optional<ReportLayers>(); }, options);
   return std::make_shared<ReportLayerDrawing>(
-      [&req, &target, options]() -> std::optional<ReportLayers> {
+      [scan_mm = scan.mesh_mm, units = scan.units, landmarks, fit_options, model = std::move(model),
+       options]() mutable -> std::optional<ReportLayers> {
+        const std::shared_ptr<const model::RiggedModel> m = model();
         std::vector<std::pair<std::string, Vec3>> landmarks_mm;
-        if (req.landmarks) landmarks_mm = prepare_landmarks(*req.landmarks, target.scan.units);
-        return plan_report_layers(target.scan.mesh_mm, *req.model,
-                                  initialization_landmarks(fit::match_landmarks(*req.model, landmarks_mm), req.options),
-                                  options);
+        if (landmarks) landmarks_mm = prepare_landmarks(*landmarks, units);
+        return plan_report_layers(std::move(scan_mm), *m,
+                                  initialization_landmarks(fit::match_landmarks(*m, landmarks_mm), fit_options), options);
       },
       options);
+}
+
+std::shared_ptr<ReportLayerDrawing> start_report_layers(const RegisterRequest& req, const PreparedTarget& target,
+                                                        const ReportFigureOptions& options) {
+  return start_report_layers(target.scan, req.landmarks, req.options, [model = req.model] { return model; }, options);
 }
 
 }  // namespace breastfit::pipeline

@@ -64,8 +64,9 @@ inline constexpr double kCropArmMarginMm = 120.0;
 
 /// The scan without the triangles that lie outside `box` (in the body frame of `body_to_world`),
 /// with vertex normals: the table, background and far fragments, which would otherwise shrink
-/// the torso in the framed image. The whole scan when nothing would be left.
-TriangleMesh crop_scan(const TriangleMesh& scan, const Eigen::AlignedBox3d& box, const Eigen::Matrix4d& body_to_world);
+/// the torso in the framed image. The whole scan when nothing would be left. (By value: a scan
+/// the caller no longer needs is moved in, not copied.)
+TriangleMesh crop_scan(TriangleMesh scan, const Eigen::AlignedBox3d& box, const Eigen::Matrix4d& body_to_world);
 
 /// The overlay figures' scan layers, set up by plan_report_layers (drawn by draw_report_layer).
 struct ReportLayers {
@@ -75,7 +76,7 @@ struct ReportLayers {
 
 /// Sets up the layers for a fit initialised from `landmarks` (initialization_landmarks) on
 /// `scan_mm`; nullopt when there are fewer than 3 (landmark-free) or the scan has no triangles.
-std::optional<ReportLayers> plan_report_layers(const TriangleMesh& scan_mm, const model::RiggedModel& model,
+std::optional<ReportLayers> plan_report_layers(TriangleMesh scan_mm, const model::RiggedModel& model,
                                                std::vector<fit::LandmarkTarget> landmarks,
                                                const ReportFigureOptions& options);
 
@@ -123,10 +124,23 @@ class ReportLayerDrawing {
   std::thread thread_;
 };
 
-/// Starts drawing the layers of `request`'s registration on a thread of its own (the scan as
-/// `target` prepared it; the template `request.model`, which must be set); its layers() are
-/// nullptr when the fit will be landmark-free. `target` and `request` must outlive the planning
-/// (layers() returns after it). \throws (from layers()) InvalidInput as fit::match_landmarks.
+/// The template of the registration whose layers are drawn, as the drawing thread gets it: it may
+/// wait for the template being loaded elsewhere, and throw that load's error.
+using TemplateSource = std::function<std::shared_ptr<const model::RiggedModel>()>;
+
+/// Starts drawing the layers of a registration on a thread of its own as soon as its scan is
+/// prepared (`scan`, as prepare_scan gave it: `register` starts them before the scan's index is
+/// built, prepare_target's `before_index`), from the `landmarks` as read and the fit's `fit_options`
+/// (use_landmarks, max_landmarks); the thread takes the template from `model` (it may still be
+/// loading). The scan is copied here (the caller's may move on); nothing else is kept. Its
+/// layers() are nullptr when the fit will be landmark-free. \throws (from layers()) InvalidInput as
+/// fit::match_landmarks or prepare_landmarks, and `model`'s error.
+std::shared_ptr<ReportLayerDrawing> start_report_layers(const PreparedScan& scan, const std::optional<LandmarkSet>& landmarks,
+                                                        const fit::FitOptions& fit_options, TemplateSource model,
+                                                        const ReportFigureOptions& options);
+
+/// start_report_layers for `request`'s registration on `target` (after its index is built; the
+/// template `request.model`, which must be set).
 std::shared_ptr<ReportLayerDrawing> start_report_layers(const RegisterRequest& request, const PreparedTarget& target,
                                                         const ReportFigureOptions& options);
 
