@@ -114,6 +114,9 @@ TEST(ScanSession, RefitIsTheSameWithOneAndTwoThreads) {
     EXPECT_EQ(rb.fit.summary.landmark_checks[i].predicted_distance_mm,
               ra.fit.summary.landmark_checks[i].predicted_distance_mm) << i;
   EXPECT_EQ(rb.surface.mae, ra.surface.mae);
+  EXPECT_EQ(rb.surface_model_only.mae, ra.surface_model_only.mae);
+  EXPECT_EQ(rb.breasts.warnings, ra.breasts.warnings);
+  EXPECT_EQ(rb.breasts.volume_ratio, ra.breasts.volume_ratio);
   ASSERT_EQ(rb.drawings_on_scan.size(), ra.drawings_on_scan.size());
   for (size_t i = 0; i < ra.drawings_on_scan.size(); ++i)
     EXPECT_EQ(rb.drawings_on_scan[i].points, ra.drawings_on_scan[i].points) << ra.drawings_on_scan[i].name;

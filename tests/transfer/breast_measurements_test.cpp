@@ -137,6 +137,30 @@ TEST(BreastMeasurements, TemplateIsSymmetricAndTracksBreastShapes) {
   EXPECT_LT(*bigger.volume_ratio, 0.95);
 }
 
+// The two sides measured apart (measure_breast_side, as a warm re-fit runs them as tasks of its
+// own) and joined give measure_breasts' numbers and warnings, bit for bit; a bad side is refused.
+TEST(BreastMeasurements, SidesMeasuredApartAreMeasureBreasts) {
+  const model::RiggedModel& m = torso();
+  model::PoseParams p = model::PoseParams::identity(m);
+  if (const auto k = m.blendshape_index("breast_volume_R")) p.alpha[*k] = std::min(0.5, m.blendshapes[*k].hi);
+  const Points V = model::pose_vertices(m, p);
+  const BreastMeasurements both = measure_breasts(m, V, {}, nullptr, 2);
+  BreastSideMeasurement left = measure_breast_side(m, V, 'L');
+  BreastSideMeasurement right = measure_breast_side(m, V, 'R');
+  const BreastMeasurements joined = join_breast_sides(m, V, std::move(right), std::move(left));
+  ASSERT_TRUE(both.right.volume_ml && both.left.volume_ml && joined.right.volume_ml && joined.left.volume_ml);
+  EXPECT_EQ(*joined.right.volume_ml, *both.right.volume_ml);
+  EXPECT_EQ(*joined.left.volume_ml, *both.left.volume_ml);
+  EXPECT_NE(*joined.right.volume_ml, *joined.left.volume_ml);  // the sides are not exchanged
+  EXPECT_EQ(*joined.volume_ratio, *both.volume_ratio);
+  EXPECT_EQ(*joined.right.nipple_to_imf_mm, *both.right.nipple_to_imf_mm);
+  EXPECT_EQ(*joined.left.notch_to_nipple_mm, *both.left.notch_to_nipple_mm);
+  EXPECT_EQ(*joined.inter_nipple_mm, *both.inter_nipple_mm);
+  EXPECT_EQ(joined.warnings, both.warnings);
+  EXPECT_THROW(measure_breast_side(m, V, 'X'), InvalidInput);
+  EXPECT_THROW(measure_breast_side(m, V.topRows(10), 'R'), InvalidInput);
+}
+
 }  // namespace
 }  // namespace breastfit::transfer
 

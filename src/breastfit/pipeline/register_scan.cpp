@@ -1,6 +1,11 @@
 #include "breastfit/pipeline/register_scan.h"
 
 #include <algorithm>
+#include <atomic>
+#include <exception>
+#include <functional>
+#include <system_error>
+#include <thread>
 #include <cmath>
 #include <cstdio>
 
@@ -28,6 +33,41 @@ std::string fmt(double v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.1f", v);
   return buf;
+}
+
+// `first` and then the tasks [0, count) on the calling thread, `beside` before them: with
+// `two_threads` `beside` runs on a second thread from the start, which then takes the tasks left
+// (each task once, by whichever thread is free, in order), else `beside` runs after `first` on the
+// calling thread. Returns when all are done; rethrows the first exception (first's, beside's, then
+// the tasks' in their order).
+void run_beside(bool two_threads, const std::function<void()>& beside, const std::function<void()>& first,
+                std::size_t count, const std::function<void(std::size_t)>& task) {
+  std::vector<std::exception_ptr> errors(count + 2);
+  std::atomic<std::size_t> next{0};
+  const auto guarded = [&](std::size_t slot, const std::function<void()>& f) {
+    try {
+      f();
+    } catch (...) {
+      errors[slot] = std::current_exception();
+    }
+  };
+  const auto take = [&] {
+    for (std::size_t i; (i = next++) < count;) guarded(i + 2, [&] { task(i); });
+  };
+  std::thread helper;
+  if (two_threads) try {
+      helper = std::thread([&] {
+        guarded(1, beside);
+        take();
+      });
+    } catch (const std::system_error&) {  // no thread: all on this one
+    }
+  guarded(0, first);
+  if (!helper.joinable()) guarded(1, beside);
+  take();
+  if (helper.joinable()) helper.join();
+  for (const auto& e : errors)
+    if (e) std::rethrow_exception(e);
 }
 
 }  // namespace
@@ -173,30 +213,46 @@ RegisterResult register_prepared(const RegisterRequest& req, PreparedTarget& tar
       }
     });
   } else {
-    // What the user needs at once: the fitted model and the drawings; then the rest.
-    transfer_drawings();
-    if (on_surface) {
-      out.drawings_mm = transfer::to_markups(out.drawings_on_scan);
-      out.complete = false;
-      collect_warnings();
-      PreparedScan kept = std::move(out.scan);  // not copied for the first result
-      out.scan = PreparedScan{};
-      on_surface(out);
-      out.scan = std::move(kept);
-      out.complete = true;
-    }
+    // What the user needs at once: the fitted model and the drawings; then the rest. The landmark
+    // checks (the longest task) need only the fitted parameters: with two threads they start on
+    // the second one at once, beside the drawings' transfer; the two breasts and the coverage
+    // passes are taken in order by whichever thread is free (each task writes only its own result).
     fit::FitOptions one_thread = options;  // each task on its own thread
     one_thread.threads = 1;
-    run_in_order(3, threads, [&](std::size_t task) {
-      switch (task) {
-        case 0: fit::check_refit(model, scan, one_thread, out.fit); break;  // the longest
-        case 1: measure_breasts(1); break;
-        default:
-          out.coverage = metrics::surface_coverage(out.fitted_mm, scan, coverage_options, &faces);
-          cover_model_only();
-          break;
+    transfer::BreastSideMeasurement sides[2];
+    double side_s[2] = {0, 0};
+    // The tasks write into their own objects, not into `out`, which the first result reads meanwhile.
+    fit::FitResult checked = out.fit;
+    metrics::SurfaceCoverage coverage;
+    auto rest = [&](std::size_t task) {
+      if (task < 2) {
+        Timer own;
+        sides[task] = transfer::measure_breast_side(model, out.fit.vertices, task == 0 ? 'R' : 'L', {},
+                                                    target.volumes.get());
+        side_s[task] = own.seconds();
+      } else {
+        coverage = metrics::surface_coverage(out.fitted_mm, scan, coverage_options, &faces);
+        cover_model_only();
       }
-    });
+    };
+    auto check = [&] { fit::check_refit(model, scan, one_thread, checked); };
+    run_beside(threads >= 2, check, [&] {
+      transfer_drawings();
+      if (on_surface) {
+        out.drawings_mm = transfer::to_markups(out.drawings_on_scan);
+        out.complete = false;
+        collect_warnings();
+        PreparedScan kept = std::move(out.scan);  // not copied for the first result
+        out.scan = PreparedScan{};
+        on_surface(out);
+        out.scan = std::move(kept);
+        out.complete = true;
+      }
+    }, 3, rest);
+    out.fit = std::move(checked);
+    out.coverage = std::move(coverage);
+    out.breasts = transfer::join_breast_sides(model, out.fit.vertices, std::move(sides[0]), std::move(sides[1]));
+    breasts_s = side_s[0] + side_s[1];
     for (size_t k = fit_phases; k < out.fit.summary.timings.size(); ++k) out.timings.push_back(out.fit.summary.timings[k]);
   }
   out.drawings_mm = transfer::to_markups(out.drawings_on_scan);

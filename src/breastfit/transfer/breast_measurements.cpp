@@ -123,87 +123,116 @@ RegionVolume region_volume(const TriangleMesh& surface, const std::vector<Index>
   return out;
 }
 
-BreastMeasurements measure_breasts(const model::RiggedModel& model, const Points& posed_mm, const VolumeOptions& options,
-                                   VolumeCache* cache, unsigned threads) {
+namespace {
+
+void check_posed(const model::RiggedModel& model, const Points& posed_mm) {
   if (posed_mm.rows() != model.num_vertices())
     throw InvalidInput("measure_breasts: " + std::to_string(posed_mm.rows()) + " posed vertices for a model with " +
                        std::to_string(model.num_vertices()));
-  BreastMeasurements m;
-  m.volume_options = options;
+}
+
+std::optional<Vec3> posed_landmark(const model::RiggedModel& model, const Points& posed_mm, const std::string& name) {
+  const auto i = model.landmark_index(name);
+  if (!i) return std::nullopt;
+  return model.landmarks[static_cast<size_t>(*i)].point.position(posed_mm, model.rest.F);
+}
+
+// Vertical: xiphoid → sternal_notch of the posed model, else +z (nullopt: the fallback).
+std::optional<Vec3> posed_up(const model::RiggedModel& model, const Points& posed_mm) {
+  const auto notch = posed_landmark(model, posed_mm, "sternal_notch");
+  const auto xiphoid = posed_landmark(model, posed_mm, "xiphoid");
+  if (notch && xiphoid && (*notch - *xiphoid).norm() > 1e-9) return (*notch - *xiphoid).normalized();
+  return std::nullopt;
+}
+
+}  // namespace
+
+BreastSideMeasurement measure_breast_side(const model::RiggedModel& model, const Points& posed_mm, char side,
+                                          const VolumeOptions& options, VolumeCache* cache) {
+  check_posed(model, posed_mm);
+  if (side != 'R' && side != 'L') throw InvalidInput(std::string("measure_breast_side: side '") + side + "' (R or L)");
   const Triangles& F = model.rest.F;
-  auto landmark = [&](const std::string& name) -> std::optional<Vec3> {
-    const auto i = model.landmark_index(name);
-    if (!i) return std::nullopt;
-    return model.landmarks[static_cast<size_t>(*i)].point.position(posed_mm, F);
-  };
-  const auto notch = landmark("sternal_notch");
-  const auto xiphoid = landmark("xiphoid");
-  Vec3 up(0, 0, 1);
-  if (notch && xiphoid && (*notch - *xiphoid).norm() > 1e-9) {
-    up = (*notch - *xiphoid).normalized();
+  const Vec3 up = posed_up(model, posed_mm).value_or(Vec3(0, 0, 1));
+  const auto notch = posed_landmark(model, posed_mm, "sternal_notch");
+  BreastSideMeasurement out;
+  std::vector<std::string>& warnings = out.warnings;
+  BreastSide& b = out.numbers;
+  const std::string s(1, side);
+  const auto nipple = posed_landmark(model, posed_mm, "nipple_" + s);
+  if (!nipple) warnings.push_back("landmark nipple_" + s + " missing");
+  if (nipple && notch) b.notch_to_nipple_mm = (*nipple - *notch).norm();
+
+  const model::Drawing* fold = nullptr;
+  for (const std::string name : {"imf_" + s, "breast_contour_" + s}) {
+    if (const auto i = model.drawing_index(name)) {
+      fold = &model.drawings[static_cast<size_t>(*i)];
+      break;
+    }
+  }
+  if (fold && !fold->points.empty()) {
+    Vec3 lowest = fold->points[0].position(posed_mm, F);
+    for (const auto& p : fold->points) {
+      const Vec3 x = p.position(posed_mm, F);
+      if (x.dot(up) < lowest.dot(up)) lowest = x;
+    }
+    b.imf_lowest_mm = lowest;
+    if (nipple) b.nipple_to_imf_mm = (*nipple - lowest).norm();
   } else {
-    m.warnings.push_back("sternal_notch or xiphoid missing: 'lowest' uses the +z axis of the fit");
+    warnings.push_back("drawings imf_" + s + " and breast_contour_" + s + " missing");
   }
 
-  TriangleMesh skin;
-  skin.V = posed_mm;
-  skin.F = F;
-  // The two sides are independent (each writes its own numbers and warnings, joined in order).
-  std::vector<std::string> side_warnings[2];
-  run_in_order(2, std::max(1u, threads), [&](std::size_t side) {
-    std::vector<std::string>& warnings = side_warnings[side];
-    const std::string s = side == 0 ? "R" : "L";
-    BreastSide& b = side == 0 ? m.right : m.left;
-    const auto nipple = landmark("nipple_" + s);
-    if (!nipple) warnings.push_back("landmark nipple_" + s + " missing");
-    if (nipple && notch) b.notch_to_nipple_mm = (*nipple - *notch).norm();
+  // Volume: the skin inside the breast contour against a chest wall spanning the contour
+  // (curve_region.h) — the same rule `breastfit volume` and the bench validation apply.
+  const auto c = model.drawing_index("breast_contour_" + s);
+  if (c && model.drawings[static_cast<size_t>(*c)].points.size() >= 3) {
+    const auto& pts = model.drawings[static_cast<size_t>(*c)].points;
+    Points curve(static_cast<Index>(pts.size()), 3);
+    for (size_t i = 0; i < pts.size(); ++i) curve.row(static_cast<Index>(i)) = pts[i].position(posed_mm, F).transpose();
+    TriangleMesh skin;
+    skin.V = posed_mm;
+    skin.F = F;
+    try {
+      CurveVolumeOptions co;
+      co.volume = options;
+      co.target_edge_mm = 4.0;  // within 0.5 % of finer refinements (docs/TRANSFER.md), 4x fewer faces than 2 mm
+      b.volume_ml = curve_volume(skin, curve, co, cache).volume_ml;
+      if (*b.volume_ml < 0) warnings.push_back("breast_" + s + " volume is negative (the skin lies under the chest-wall fill)");
+    } catch (const InvalidInput& e) {
+      warnings.push_back("breast_" + s + " volume not measured: " + e.what());
+    }
+  } else {
+    warnings.push_back("drawing breast_contour_" + s + " missing: no volume");
+  }
+  return out;
+}
 
-    const model::Drawing* fold = nullptr;
-    for (const std::string name : {"imf_" + s, "breast_contour_" + s}) {
-      if (const auto i = model.drawing_index(name)) {
-        fold = &model.drawings[static_cast<size_t>(*i)];
-        break;
-      }
-    }
-    if (fold && !fold->points.empty()) {
-      Vec3 lowest = fold->points[0].position(posed_mm, F);
-      for (const auto& p : fold->points) {
-        const Vec3 x = p.position(posed_mm, F);
-        if (x.dot(up) < lowest.dot(up)) lowest = x;
-      }
-      b.imf_lowest_mm = lowest;
-      if (nipple) b.nipple_to_imf_mm = (*nipple - lowest).norm();
-    } else {
-      warnings.push_back("drawings imf_" + s + " and breast_contour_" + s + " missing");
-    }
-
-    // Volume: the skin inside the breast contour against a chest wall spanning the contour
-    // (curve_region.h) — the same rule `breastfit volume` and the bench validation apply.
-    const auto c = model.drawing_index("breast_contour_" + s);
-    if (c && model.drawings[static_cast<size_t>(*c)].points.size() >= 3) {
-      const auto& pts = model.drawings[static_cast<size_t>(*c)].points;
-      Points curve(static_cast<Index>(pts.size()), 3);
-      for (size_t i = 0; i < pts.size(); ++i) curve.row(static_cast<Index>(i)) = pts[i].position(posed_mm, F).transpose();
-      try {
-        CurveVolumeOptions co;
-        co.volume = options;
-        co.target_edge_mm = 4.0;  // within 0.5 % of finer refinements (docs/TRANSFER.md), 4x fewer faces than 2 mm
-        b.volume_ml = curve_volume(skin, curve, co, cache).volume_ml;
-        if (*b.volume_ml < 0) warnings.push_back("breast_" + s + " volume is negative (the skin lies under the chest-wall fill)");
-      } catch (const InvalidInput& e) {
-        warnings.push_back("breast_" + s + " volume not measured: " + e.what());
-      }
-    } else {
-      warnings.push_back("drawing breast_contour_" + s + " missing: no volume");
-    }
-  });
-  for (auto& w : side_warnings) m.warnings.insert(m.warnings.end(), w.begin(), w.end());
-  const auto nr = landmark("nipple_R"), nl = landmark("nipple_L");
+BreastMeasurements join_breast_sides(const model::RiggedModel& model, const Points& posed_mm,
+                                     BreastSideMeasurement right, BreastSideMeasurement left,
+                                     const VolumeOptions& options) {
+  check_posed(model, posed_mm);
+  BreastMeasurements m;
+  m.volume_options = options;
+  if (!posed_up(model, posed_mm)) m.warnings.push_back("sternal_notch or xiphoid missing: 'lowest' uses the +z axis of the fit");
+  m.right = std::move(right.numbers);
+  m.left = std::move(left.numbers);
+  for (auto* w : {&right.warnings, &left.warnings}) m.warnings.insert(m.warnings.end(), w->begin(), w->end());
+  const auto nr = posed_landmark(model, posed_mm, "nipple_R"), nl = posed_landmark(model, posed_mm, "nipple_L");
   if (nr && nl) m.inter_nipple_mm = (*nr - *nl).norm();
   m.volume_ratio = ratio(m.left.volume_ml, m.right.volume_ml);
   m.notch_to_nipple_ratio = ratio(m.left.notch_to_nipple_mm, m.right.notch_to_nipple_mm);
   m.nipple_to_imf_ratio = ratio(m.left.nipple_to_imf_mm, m.right.nipple_to_imf_mm);
   return m;
+}
+
+BreastMeasurements measure_breasts(const model::RiggedModel& model, const Points& posed_mm, const VolumeOptions& options,
+                                   VolumeCache* cache, unsigned threads) {
+  check_posed(model, posed_mm);
+  // The two sides are independent (each writes its own numbers and warnings, joined in order).
+  BreastSideMeasurement sides[2];
+  run_in_order(2, std::max(1u, threads), [&](std::size_t side) {
+    sides[side] = measure_breast_side(model, posed_mm, side == 0 ? 'R' : 'L', options, cache);
+  });
+  return join_breast_sides(model, posed_mm, std::move(sides[0]), std::move(sides[1]), options);
 }
 
 }  // namespace breastfit::transfer

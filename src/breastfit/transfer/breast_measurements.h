@@ -78,6 +78,24 @@ struct BreastMeasurements {
   std::vector<std::string> warnings;          ///< missing inputs, negative volumes
 };
 
+/// One side's part of measure_breasts: its numbers and warnings.
+struct BreastSideMeasurement {
+  BreastSide numbers;
+  std::vector<std::string> warnings;
+};
+
+/// measure_breasts' work for one breast, `side` 'R' or 'L' (the same numbers): the two sides are
+/// independent, so a caller may run them as two of its own tasks and join them with
+/// join_breast_sides (pipeline::register_prepared's re-fit balances them against its other tasks).
+/// \throws InvalidInput when posed_mm does not match the model or side is neither 'R' nor 'L'
+BreastSideMeasurement measure_breast_side(const model::RiggedModel& model, const Points& posed_mm, char side,
+                                          const VolumeOptions& options = {}, VolumeCache* cache = nullptr);
+
+/// The measurements from the two sides of measure_breast_side (what measure_breasts returns).
+BreastMeasurements join_breast_sides(const model::RiggedModel& model, const Points& posed_mm,
+                                     BreastSideMeasurement right, BreastSideMeasurement left,
+                                     const VolumeOptions& options = {});
+
 /// Measures both breasts on the posed template.
 /// Vertical ("lowest") is the direction xiphoid → sternal_notch of the posed model (falls back
 /// to the +z axis of posed_mm, with a warning, when a landmark is missing).
