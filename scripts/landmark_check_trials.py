@@ -2,7 +2,8 @@
 """Moved-landmark trials on cases in the bench layout (scan.ply + landmarks.mrk.json per case).
 
 Each landmark of each case in turn is walked DIST mm along the scan's skin (2 mm steps in a
-random tangent direction, or --directions evenly spread ones from a random start, each step projected back onto the plane of the nearest scan points),
+random tangent direction, or --directions evenly spread ones from a random start, each step projected back onto the plane of the nearest scan points;
+in mm whatever the case's units: a case whose markup says "coordinateUnits" m is walked on its scan scaled to mm),
 the case is registered with `breastfit register`, and report.json's landmark check says whether
 the moved landmark was flagged (and which other landmarks were). With --unmodified, the cases'
 landmarks as given are registered too (false flags). Prints one line per trial and a summary.
@@ -57,6 +58,14 @@ def read_ply_vertices(path):
         rec = "<" + "".join(sizes[p] for p in props)
         data = f.read(struct.calcsize(rec) * n)
         return np.array([r[:3] for r in struct.iter_unpack(rec, data)], dtype=float)
+
+
+def millimetres_per_unit(mrk):
+    """1000 for landmarks (and so the scan) in metres, else 1: the markup's coordinateUnits."""
+    units = mrk["markups"][0].get("coordinateUnits", "mm")
+    if isinstance(units, list):
+        units = units[0] if units else "mm"
+    return 1000.0 if str(units).lower() in ("m", "meter", "metre") else 1.0
 
 
 class Skin:
@@ -147,7 +156,8 @@ def main():
             continue
         with open(os.path.join(case, "landmarks.mrk.json")) as f:
             mrk = json.load(f)
-        skin = Skin(read_ply_vertices(os.path.join(case, "scan.ply")))
+        mm = millimetres_per_unit(mrk)  # walk in mm whatever the case's units
+        skin = Skin(read_ply_vertices(os.path.join(case, "scan.ply")) * mm)
         if a.unmodified:
             jobs.append((a.bin, case, name, 0.0, mrk, None, None, os.path.join(a.out, name, "as_given"), a.extra))
         for cp in mrk["markups"][0]["controlPoints"]:
@@ -157,7 +167,8 @@ def main():
                 if a.landmarks and label not in a.landmarks:
                     continue
                 for k in range(a.directions):
-                    moved = skin.walk(cp["position"], dist, start + 2 * math.pi * k / a.directions)
+                    moved = skin.walk(np.asarray(cp["position"], dtype=float) * mm, dist,
+                                      start + 2 * math.pi * k / a.directions) / mm
                     jobs.append((a.bin, case, name, dist, mrk, label, moved,
                                  os.path.join(a.out, name, "%s_%g_%d" % (label, dist, k)), a.extra))
     results = []

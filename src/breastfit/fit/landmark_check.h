@@ -55,8 +55,11 @@ struct LandmarkCheck {
   double tolerance_mm = 0;
   double factor = 1;        ///< robust factor the fit's last stage gave it (1 = full weight)
   /// Given landmark ↔ the landmark found on the scan by its own anatomical definition — the
-  /// nipples: the breast's tip (breast_tip_on_scan); the sternal notch: the jugular notch on the
-  /// other landmarks' midline (midline_notch_check.h); < 0 when not checked.
+  /// nipples: the breast's tip (breast_tip_on_scan) or apex (nipple_apex_check.h); the sternal
+  /// notch: the jugular notch on the other landmarks' midline (midline_notch_check.h); the pairs'
+  /// mirror image (bilateral_check.h); the insertions' arm (pectoral_check.h); the xiphoid: the
+  /// lowest breast points' height (xiphoid_check.h); any of them with the prediction agreeing
+  /// (combined_check.h) — the one farthest beyond its tolerance; < 0 when not checked.
   double anatomy_distance_mm = -1;
   double anatomy_tolerance_mm = 0;
   std::string anatomy;      ///< what was found on the scan ("the breast's tip", …); empty when not checked

@@ -10,10 +10,13 @@
 #include "breastfit/core/timer.h"
 #include "breastfit/fit/bilateral_check.h"
 #include "breastfit/fit/breast_fold.h"
+#include "breastfit/fit/combined_check.h"
 #include "breastfit/fit/initialization.h"
 #include "breastfit/fit/jugular_notch.h"
 #include "breastfit/fit/landmark_prediction.h"
 #include "breastfit/fit/midline_notch_check.h"
+#include "breastfit/fit/nipple_apex.h"
+#include "breastfit/fit/nipple_apex_check.h"
 #include "breastfit/fit/orientation_search.h"
 #include "breastfit/fit/parallel_chunks.h"
 #include "breastfit/fit/pectoral_check.h"
@@ -22,6 +25,7 @@
 #include "breastfit/fit/problem.h"
 #include "breastfit/fit/shoulder_landmarks.h"
 #include "breastfit/fit/sliding_landmarks.h"
+#include "breastfit/fit/xiphoid_check.h"
 #include "breastfit/mesh/normals.h"
 #include "breastfit/mesh/landmark_names.h"
 
@@ -430,20 +434,26 @@ void check_pairs(const std::vector<LandmarkTarget>& given, const FitOptions& opt
   }
 }
 
+// The sternum's frame of one side ('R' or 'L') from the fitted notch, xiphoid and nipples
+// (shoulder_landmarks.h sternum_frame); nullopt when the model lacks one of them or it is degenerate.
+std::optional<SternumFrame> fitted_sternum_frame(const model::RiggedModel& model, const Points& V,
+                                                 const model::PoseParams& params, char side) {
+  Vec3 p[4];
+  const char* names[4] = {"sternal_notch", "xiphoid", "nipple_R", "nipple_L"};
+  for (int k = 0; k < 4; ++k) {
+    const auto idx = model.landmark_index(names[k]);
+    if (!idx) return std::nullopt;
+    p[k] = model_landmark_position(model, *idx, V, params);
+  }
+  return sternum_frame(p[0], p[1], p[2], p[3], side);
+}
+
 // Each given pectoral insertion against the same side's acromion and the fitted arm
 // (pectoral_check.h), in the fitted sternum's frame; skipped when that acromion is suspect itself
 // (beyond its prediction's or its pair's tolerance: the reference would be wrong).
 void check_insertions(const model::RiggedModel& model, const Points& V, const model::PoseParams& params,
                       const std::vector<LandmarkTarget>& given, const std::vector<Vec3>& predicted,
                       const FitOptions& options, std::vector<std::optional<AnatomyCheck>>& out) {
-  const auto posed = [&](const char* name) -> std::optional<Vec3> {
-    const auto idx = model.landmark_index(name);
-    if (!idx) return std::nullopt;
-    return model_landmark_position(model, *idx, V, params);
-  };
-  const auto notch = posed("sternal_notch"), xiphoid = posed("xiphoid");
-  const auto right = posed("nipple_R"), left = posed("nipple_L");
-  if (!notch || !xiphoid || !right || !left) return;
   const auto index_of = [&](const std::string& name) {
     return static_cast<size_t>(
         std::find_if(given.begin(), given.end(), [&](const LandmarkTarget& t) { return t.name == name; }) -
@@ -457,12 +467,64 @@ void check_insertions(const model::RiggedModel& model, const Points& V, const mo
         (out[a] && out[a]->distance_mm > out[a]->tolerance_mm) ||
         (a < predicted.size() && (predicted[a] - given[a].position).norm() >
                                      placed_landmark_tolerance_mm(given[a].name, options.landmark_check_mm));
-    const auto frame = sternum_frame(*notch, *xiphoid, *right, *left, side);
+    const auto frame = fitted_sternum_frame(model, V, params, side);
     const auto arm = upper_arm_axis(model, V, params, s);
     if (acromion_suspect || !frame || !arm) continue;
     const PectoralCheck c =
         check_pectoral_insertion(*frame, *arm, given[i].position, given[a].position, options.landmark_check_mm);
     out[i] = AnatomyCheck{c.distance_mm, c.tolerance_mm, "where 'acromion_" + s + "' and the fitted arm put it"};
+  }
+}
+
+// `c` into `slot` when it is flagged and farther beyond its tolerance than the check already there.
+void keep_if_worse(std::optional<AnatomyCheck>& slot, AnatomyCheck c) {
+  const auto beyond = [](const AnatomyCheck& a) { return a.distance_mm / a.tolerance_mm; };
+  if (!(c.distance_mm > c.tolerance_mm)) return;
+  if (!slot || !(slot->distance_mm > slot->tolerance_mm) || beyond(c) > beyond(*slot)) slot = std::move(c);
+}
+
+// Session 13 (docs/REGISTRATION.md): the prediction and the anatomical check agreeing
+// (combined_check.h), the nipples against the breast's apex (nipple_apex_check.h), the xiphoid
+// against the lowest breast points' height (xiphoid_check.h). Each takes a landmark's anatomical
+// check when it flags it and is farther beyond than the one there; `out` holds the earlier checks,
+// `scan_N` the scan's outward normals when already computed (else empty; computed here if needed).
+void check_agreement(const model::RiggedModel& model, const Points& V, const model::PoseParams& params,
+                     const ScanTarget& scan, const std::optional<BodyAxes>& axes,
+                     const std::vector<LandmarkTarget>& given, const std::vector<Vec3>& predicted,
+                     const FitOptions& options, Points& scan_N, std::vector<std::optional<AnatomyCheck>>& out) {
+  const std::vector<std::optional<AnatomyCheck>> before = out;
+  for (size_t i = 0; i < given.size() && i < predicted.size(); ++i) {
+    if (!before[i]) continue;
+    const double ratio = (predicted[i] - given[i].position).norm() /
+                         placed_landmark_tolerance_mm(given[i].name, options.landmark_check_mm);
+    const auto tolerance = combined_anatomy_tolerance_mm(given[i].name, ratio, before[i]->tolerance_mm);
+    if (tolerance)
+      keep_if_worse(out[i], AnatomyCheck{before[i]->distance_mm, std::max(*tolerance, 0.25 * before[i]->tolerance_mm),
+                                         before[i]->what + ", with where the other landmarks put it " +
+                                             fmt(100 * ratio, 0) + " % of its tolerance off too"});
+  }
+  if (!axes) return;
+  for (size_t i = 0; i < given.size(); ++i) {
+    const std::string& name = given[i].name;
+    if (name != "nipple_R" && name != "nipple_L") continue;
+    const auto frame = fitted_sternum_frame(model, V, params, name.back());
+    if (!frame) continue;
+    if (scan_N.rows() == 0) scan_N = scan.normal_sign() * scan.vertex_normals();
+    const Vec3 near = i < predicted.size() ? predicted[i] : given[i].position;
+    const auto apex = nipple_apex_on_scan(scan.mesh().V, scan.mesh().V, scan_N, near, axes->up);
+    if (!apex) continue;
+    const double tip_ratio = before[i] ? before[i]->distance_mm / before[i]->tolerance_mm : 0.0;
+    const NippleApexCheck c = check_nipple_apex(*frame, given[i].position, *apex, tip_ratio);
+    keep_if_worse(out[i], AnatomyCheck{c.distance_mm, c.tolerance_mm, "the breast's apex on the scan"});
+  }
+  const LandmarkTarget *n = find_landmark(given, "sternal_notch"), *x = find_landmark(given, "xiphoid"),
+                       *r = find_landmark(given, "lowest_breast_R"), *l = find_landmark(given, "lowest_breast_L");
+  if (n && x && r && l) {
+    const size_t i = static_cast<size_t>(x - given.data());
+    const double residual = xiphoid_residual_mm(n->position, x->position, r->position, l->position, axes->up);
+    if (residual > 0)
+      keep_if_worse(out[i], AnatomyCheck{residual, kXiphoidTooLowMm * options.landmark_check_mm / 15.0,
+                                         "the sternum's length the lowest breast points give (too low by that)"});
   }
 }
 
@@ -498,6 +560,7 @@ std::vector<std::optional<AnatomyCheck>> check_anatomy(const model::RiggedModel&
   }
   check_pairs(given, options, out);
   check_insertions(model, V, params, given, predicted, options, out);
+  check_agreement(model, V, params, scan, axes, given, predicted, options, scan_N, out);
   return out;
 }
 

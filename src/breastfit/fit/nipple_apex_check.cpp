@@ -1,0 +1,22 @@
+#include "breastfit/fit/nipple_apex_check.h"
+
+#include <algorithm>
+
+namespace breastfit::fit {
+
+NippleApexCheck check_nipple_apex(const SternumFrame& frame, const Vec3& given, const Vec3& apex, double tip_ratio) {
+  NippleApexCheck c;
+  const Vec3 d = given - apex;
+  c.deviation = Vec3(d.dot(frame.lateral), d.dot(frame.up), d.dot(frame.front));
+  c.distance_mm = d.norm();
+  // Each rule as a scale: the deviation is beyond the rule's boundary by `relative` (> 1: flagged).
+  double relative = 0;
+  const double up = c.deviation.y(), front = c.deviation.z();
+  if (up > 0) relative = std::max(relative, up / kApexAboveMm);
+  if (front < 0 && up > -kApexBehindAllowedBelowMm && tip_ratio > kApexBehindTipRatio)
+    relative = std::max(relative, -front / kApexBehindMm);
+  c.tolerance_mm = relative > 0 ? c.distance_mm / relative : c.distance_mm;
+  return c;
+}
+
+}  // namespace breastfit::fit
