@@ -330,6 +330,9 @@ std::vector<LandmarkTarget> shoulder_targets(const model::RiggedModel& model, co
   return out;
 }
 
+// A fit stopped by the caller or by a numerical failure: no further stage or check runs on it.
+bool cut_short(Termination t) { return t == Termination::Aborted || t == Termination::NumericalFailure; }
+
 // The acromia, the mid-axillary points and the pectoral insertions (shoulder_targets).
 bool is_shoulder_landmark(const std::string& name) {
   return name.rfind("acromion_", 0) == 0 || name.rfind("midaxillary_", 0) == 0 ||
@@ -575,7 +578,7 @@ PlacedCheck hold_off_misplaced(const model::RiggedModel& model, ScanTarget& scan
   PlacedCheck out;
   out.held_off.assign(given.size(), 1.0);
   out.flagged.assign(given.size(), false);
-  if (summary.termination == Termination::Aborted || summary.termination == Termination::NumericalFailure) return out;
+  if (cut_short(summary.termination)) return out;
   if (given.size() >= kMinLandmarksToPredict) {
     std::vector<model::PoseParams> linear_steps;
     out.predicted = predict_given(*problem, params, options, given.size(), &linear_steps);
@@ -604,7 +607,7 @@ PlacedCheck hold_off_misplaced(const model::RiggedModel& model, ScanTarget& scan
   for (size_t i : off) held[i].weight *= out.held_off[i];
   problem = std::make_unique<Problem>(model, scan, options, held);
   summary.termination = minimize_stages(*problem, {options.refine}, params, summary, on_iteration);
-  if (summary.termination != Termination::Aborted && summary.termination != Termination::NumericalFailure) {
+  if (!cut_short(summary.termination)) {
     // The landmarks held off keep the prediction that flagged them (the refit no longer follows them).
     std::vector<Vec3> after = predict_given(*problem, params, options, given.size());
     for (size_t i : off) after[i] = out.predicted[i];
@@ -681,7 +684,7 @@ FitResult register_template(const model::RiggedModel& model, ScanTarget& scan, s
     const auto coarse_end = stages.end() - 2;  // shape and refine follow
     const std::vector<StageOptions> coarse(stages.begin(), coarse_end);
     summary.termination = minimize_stages(*problem_ptr, coarse, params, summary, on_iteration);
-    if (summary.termination != Termination::Aborted && summary.termination != Termination::NumericalFailure) {
+    if (!cut_short(summary.termination)) {
       problem_ptr->evaluator().set_params(params);
       const Points& V = problem_ptr->evaluator().vertices();
       std::vector<LandmarkTarget> held = landmarks;
@@ -699,7 +702,7 @@ FitResult register_template(const model::RiggedModel& model, ScanTarget& scan, s
         // too short and the mid-axillary points came out higher), held for the refine stage; the
         // folds placed again there by proportions.
         summary.termination = minimize_stages(*problem_ptr, {coarse_end, coarse_end + 1}, params, summary, on_iteration);
-        if (summary.termination != Termination::Aborted && summary.termination != Termination::NumericalFailure) {
+        if (!cut_short(summary.termination)) {
           problem_ptr->evaluator().set_params(params);
           const Points& shaped = problem_ptr->evaluator().vertices();
           const size_t before = held.size();
@@ -711,8 +714,7 @@ FitResult register_template(const model::RiggedModel& model, ScanTarget& scan, s
           summary.anatomical_landmarks = static_cast<int>(held.size() - landmarks.size());
           problem_ptr = std::make_unique<Problem>(model, scan, options, held);
           summary.termination = minimize_stages(*problem_ptr, {coarse_end + 1, stages.end()}, params, summary, on_iteration);
-          if (landmarks.size() >= 3 && hold_shoulders && summary.termination != Termination::Aborted &&
-              summary.termination != Termination::NumericalFailure) {
+          if (landmarks.size() >= 3 && hold_shoulders && !cut_short(summary.termination)) {
             // A subset given: the shoulder's landmarks placed again on the refined model, refined once more.
             problem_ptr->evaluator().set_params(params);
             held = shoulders_on_refined(model, problem_ptr->evaluator().vertices(), params, scan, landmarks.size(), held,
@@ -832,7 +834,7 @@ void finish_surface(const model::RiggedModel& model, ScanTarget& scan, Problem& 
   summary.verdict = judge(options, problem, summary.termination, summary.kept_mae_mm);
   summary.message = summary.usable() ? summary.termination_message : summary.verdict.reason;
   summary.timings.push_back({"final_state", phase.seconds()});
-  if (summary.termination != Termination::Aborted && summary.termination != Termination::NumericalFailure)
+  if (!cut_short(summary.termination))
     result.final_correspondences = std::make_shared<const Problem::CorrespondenceState>(problem.correspondence_state());
 
   result.params = params;

@@ -1,11 +1,6 @@
 #include "breastfit/pipeline/register_scan.h"
 
 #include <algorithm>
-#include <atomic>
-#include <exception>
-#include <functional>
-#include <system_error>
-#include <thread>
 #include <cmath>
 #include <cstdio>
 
@@ -33,41 +28,6 @@ std::string fmt(double v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.1f", v);
   return buf;
-}
-
-// `first` and then the tasks [0, count) on the calling thread, `beside` before them: with
-// `two_threads` `beside` runs on a second thread from the start, which then takes the tasks left
-// (each task once, by whichever thread is free, in order), else `beside` runs after `first` on the
-// calling thread. Returns when all are done; rethrows the first exception (first's, beside's, then
-// the tasks' in their order).
-void run_beside(bool two_threads, const std::function<void()>& beside, const std::function<void()>& first,
-                std::size_t count, const std::function<void(std::size_t)>& task) {
-  std::vector<std::exception_ptr> errors(count + 2);
-  std::atomic<std::size_t> next{0};
-  const auto guarded = [&](std::size_t slot, const std::function<void()>& f) {
-    try {
-      f();
-    } catch (...) {
-      errors[slot] = std::current_exception();
-    }
-  };
-  const auto take = [&] {
-    for (std::size_t i; (i = next++) < count;) guarded(i + 2, [&] { task(i); });
-  };
-  std::thread helper;
-  if (two_threads) try {
-      helper = std::thread([&] {
-        guarded(1, beside);
-        take();
-      });
-    } catch (const std::system_error&) {  // no thread: all on this one
-    }
-  guarded(0, first);
-  if (!helper.joinable()) guarded(1, beside);
-  take();
-  if (helper.joinable()) helper.join();
-  for (const auto& e : errors)
-    if (e) std::rethrow_exception(e);
 }
 
 }  // namespace
@@ -235,20 +195,27 @@ RegisterResult register_prepared(const RegisterRequest& req, PreparedTarget& tar
         cover_model_only();
       }
     };
-    auto check = [&] { fit::check_refit(model, scan, one_thread, checked); };
-    run_beside(threads >= 2, check, [&] {
-      transfer_drawings();
-      if (on_surface) {
-        out.drawings_mm = transfer::to_markups(out.drawings_on_scan);
-        out.complete = false;
-        collect_warnings();
-        PreparedScan kept = std::move(out.scan);  // not copied for the first result
-        out.scan = PreparedScan{};
-        on_surface(out);
-        out.scan = std::move(kept);
-        out.complete = true;
+    // Task 0 the first result, task 1 the checks (side by side with two threads; in that order with
+    // one), then the breasts and the coverage passes: at most two threads, as the checks expect.
+    run_in_order(5, std::min(threads, 2u), [&](std::size_t task) {
+      if (task == 1) {
+        fit::check_refit(model, scan, one_thread, checked);
+      } else if (task > 1) {
+        rest(task - 2);
+      } else {
+        transfer_drawings();
+        if (on_surface) {
+          out.drawings_mm = transfer::to_markups(out.drawings_on_scan);
+          out.complete = false;
+          collect_warnings();
+          PreparedScan kept = std::move(out.scan);  // not copied for the first result
+          out.scan = PreparedScan{};
+          on_surface(out);
+          out.scan = std::move(kept);
+          out.complete = true;
+        }
       }
-    }, 3, rest);
+    });
     out.fit = std::move(checked);
     out.coverage = std::move(coverage);
     out.breasts = transfer::join_breast_sides(model, out.fit.vertices, std::move(sides[0]), std::move(sides[1]));
