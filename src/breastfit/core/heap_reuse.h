@@ -21,12 +21,12 @@
 namespace breastfit {
 
 /// Above this much free memory at the top of the heap, glibc gives it back to the system.
-inline constexpr std::size_t kHeapTrimThresholdBytes = std::size_t{3} << 29;  // 1.5 GiB
+inline constexpr std::size_t kHeapTrimThresholdBytes = (std::size_t{1} << 31) - 1;  // mallopt takes an int
 
 /// How much of the heap's address space keep_freed_heap_memory() reserves up front and marks for
 /// transparent huge pages: address space only; memory is taken when first touched, 2 MiB at a
 /// time.
-inline constexpr std::size_t kHugePageHeapBytes = std::size_t{1} << 30;
+inline constexpr std::size_t kHugePageHeapBytes = std::size_t{7} << 28;  // 1.75 GiB
 static_assert(kHugePageHeapBytes < kHeapTrimThresholdBytes, "the reserved block must stay in the heap when freed");
 
 /// The size of a transparent huge page on x86-64 and arm64 (4 KiB base pages).

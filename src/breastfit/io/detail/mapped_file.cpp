@@ -28,13 +28,15 @@ MappedFile::MappedFile(const std::filesystem::path& path, std::string_view what)
   }
   size_ = static_cast<std::size_t>(st.st_size);
   if (size_ > 0) {
-    void* p = ::mmap(nullptr, size_, PROT_READ, MAP_PRIVATE, fd, 0);
+    // MAP_POPULATE: the whole file's page tables in this one call (every byte is parsed), not one
+    // page fault per 4 KiB (or per fault-around group) while parsing, each of which costs
+    // microseconds under a hypervisor: 18k faults for a 72 MB scan.
+    void* p = ::mmap(nullptr, size_, PROT_READ, MAP_PRIVATE | MAP_POPULATE, fd, 0);
     if (p == MAP_FAILED) {
       const int err = errno;
       ::close(fd);
       throw IoError(name, std::string("cannot map for reading (") + std::strerror(err) + ")");
     }
-    ::madvise(p, size_, MADV_SEQUENTIAL);  // a hint only: read-ahead
     data_ = p;
   }
   ::close(fd);  // the mapping stays valid
