@@ -64,6 +64,8 @@ std::string vm_flags_at(const void* address) {
 
 TEST(HeapReuse, AThreadsLargeBlockLiesInTheHugePageHeap) {
   if (!std::ifstream("/proc/self/smaps")) GTEST_SKIP() << "no /proc/self/smaps";
+  if (!std::ifstream("/sys/kernel/mm/transparent_hugepage/enabled"))
+    GTEST_SKIP() << "a kernel without transparent huge pages";
   ASSERT_TRUE(keep_freed_heap_memory());
   constexpr std::size_t kBytes = std::size_t{16} << 20;
   std::string flags;
