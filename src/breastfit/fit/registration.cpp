@@ -25,6 +25,7 @@
 #include "breastfit/fit/problem.h"
 #include "breastfit/fit/shoulder_landmarks.h"
 #include "breastfit/fit/sliding_landmarks.h"
+#include "breastfit/fit/sternum_length.h"
 #include "breastfit/fit/xiphoid_check.h"
 #include "breastfit/mesh/normals.h"
 #include "breastfit/mesh/landmark_names.h"
@@ -280,6 +281,22 @@ void place_folds_by_proportion(const model::RiggedModel& model, const Points& V,
   }
 }
 
+// A subset of the landmarks given with the notch and both nipples but not the xiphoid: the xiphoid
+// held at the sternum's length the given three predict, along the shaped model's sternum
+// (sternum_length.h); the folds' and the shoulder's proportions are then taken from it. Appended
+// to `held` when placed.
+void place_xiphoid_by_nipples(const model::RiggedModel& model, const Points& V, const model::PoseParams& params,
+                              const std::vector<LandmarkTarget>& given, std::vector<LandmarkTarget>& held) {
+  const auto idx = model.landmark_index("xiphoid");
+  const LandmarkTarget* notch = find_landmark(given, "sternal_notch");
+  const LandmarkTarget* right = find_landmark(given, "nipple_R");
+  const LandmarkTarget* left = find_landmark(given, "nipple_L");
+  if (!idx || !notch || !right || !left || is_given(held, "xiphoid")) return;
+  const Vec3 fitted = model_landmark_position(model, *idx, V, params);
+  if (const auto placed = xiphoid_by_nipples(notch->position, right->position, left->position, fitted))
+    held.push_back({"xiphoid", *idx, *placed, landmark_weight("xiphoid")});
+}
+
 // The pectoral insertion of a hanging arm on the scan: at the anterior axillary fold
 // (pectoral_insertion.h), moved along the arm to the sternum's proportion (shoulder_landmarks.h).
 std::optional<Vec3> hanging_insertion(const model::RiggedModel& model, const Points& V, const model::PoseParams& params,
@@ -339,6 +356,12 @@ bool is_shoulder_landmark(const std::string& name) {
          name.rfind("pectoral_insertion_", 0) == 0;
 }
 
+// The weight of a mid-axillary target placed again on the refined model (landmark_weight: 0.1 for
+// a given one, 1 for the shape stage's). Arms on boards the refined model's point stayed 5–6 mm
+// from its target, most of it too high (the skin rises with the abducted arm); at 3 the fitted
+// points come 1–2 mm nearer the truth (docs/REGISTRATION.md, Session 14).
+constexpr double kReplacedMidaxillaryWeight = 3.0;
+
 // With a subset of the landmarks given, the shoulder's targets placed again on the refined model V
 // (shoulder_targets); `held` starts with the `given` landmarks, and a target not found again keeps
 // its place. With the notch and the nipples given the shape stage's sternum is short (its xiphoid
@@ -352,7 +375,10 @@ std::vector<LandmarkTarget> shoulders_on_refined(const model::RiggedModel& model
   std::vector<LandmarkTarget> out;
   for (size_t i = 0; i < held.size(); ++i)
     if (i < given || !is_shoulder_landmark(held[i].name)) out.push_back(held[i]);
-  for (auto& t : shoulder_targets(model, V, params, scan, out, arm_pose)) out.push_back(t);
+  for (auto& t : shoulder_targets(model, V, params, scan, out, arm_pose)) {
+    if (t.name.rfind("midaxillary_", 0) == 0) t.weight = kReplacedMidaxillaryWeight;
+    out.push_back(t);
+  }
   for (size_t i = given; i < held.size(); ++i)
     if (!is_given(out, held[i].name)) out.push_back(held[i]);
   return out;
@@ -706,6 +732,7 @@ FitResult register_template(const model::RiggedModel& model, ScanTarget& scan, s
           problem_ptr->evaluator().set_params(params);
           const Points& shaped = problem_ptr->evaluator().vertices();
           const size_t before = held.size();
+          if (landmarks.size() >= 3 && hold_shoulders) place_xiphoid_by_nipples(model, shaped, params, landmarks, held);
           if (hold_folds) place_folds_by_proportion(model, shaped, params, scan, landmarks, held);
           if (hold_shoulders)
             for (auto& t : shoulder_targets(model, shaped, params, scan, held, summary.orientation.arm_pose))
