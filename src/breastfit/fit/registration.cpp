@@ -11,6 +11,7 @@
 #include "breastfit/fit/bilateral_check.h"
 #include "breastfit/fit/breast_fold.h"
 #include "breastfit/fit/combined_check.h"
+#include "breastfit/fit/hanging_midaxillary.h"
 #include "breastfit/fit/initialization.h"
 #include "breastfit/fit/jugular_notch.h"
 #include "breastfit/fit/landmark_prediction.h"
@@ -356,6 +357,32 @@ bool is_shoulder_landmark(const std::string& name) {
          name.rfind("pectoral_insertion_", 0) == 0;
 }
 
+// Arms hanging (the orientation search and the scan agree, as in shoulder_targets), with a subset
+// of the landmarks given: the mid-axillary points not in `held` on the scan's chest wall in front
+// of the fitted points (hanging_midaxillary.h).
+std::vector<LandmarkTarget> hanging_midaxillary_targets(const model::RiggedModel& model, const Points& V,
+                                                        const model::PoseParams& params, const ScanTarget& scan,
+                                                        const std::vector<LandmarkTarget>& held,
+                                                        const std::string& arm_pose) {
+  std::vector<LandmarkTarget> out;
+  const auto notch = held_or_posed(model, V, params, held, "sternal_notch");
+  const auto xiphoid = held_or_posed(model, V, params, held, "xiphoid");
+  const auto right = held_or_posed(model, V, params, held, "nipple_R");
+  const auto left = held_or_posed(model, V, params, held, "nipple_L");
+  if (!notch || !xiphoid || !right || !left || arm_pose.rfind("arms abducted", 0) == 0) return out;
+  const Points& S = scan.mesh().V;
+  for (const char side : {'R', 'L'}) {
+    const auto frame = sternum_frame(*notch, *xiphoid, *right, *left, side);
+    if (!frame || arms_abducted_on_scan(S, *frame)) return out;
+    const std::string name = std::string("midaxillary_") + side;
+    const auto idx = model.landmark_index(name);
+    if (!idx || is_given(held, name)) continue;
+    if (const auto found = hanging_midaxillary_on_scan(S, model_landmark_position(model, *idx, V, params), *frame))
+      out.push_back({name, *idx, *found, 1.0});
+  }
+  return out;
+}
+
 // The weight of a mid-axillary target placed again on the refined model (landmark_weight: 0.1 for
 // a given one, 1 for the shape stage's). Arms on boards the refined model's point stayed 5–6 mm
 // from its target, most of it too high (the skin rises with the abducted arm); at 3 the fitted
@@ -375,7 +402,9 @@ std::vector<LandmarkTarget> shoulders_on_refined(const model::RiggedModel& model
   std::vector<LandmarkTarget> out;
   for (size_t i = 0; i < held.size(); ++i)
     if (i < given || !is_shoulder_landmark(held[i].name)) out.push_back(held[i]);
-  for (auto& t : shoulder_targets(model, V, params, scan, out, arm_pose)) {
+  auto found = shoulder_targets(model, V, params, scan, out, arm_pose);
+  for (auto& t : hanging_midaxillary_targets(model, V, params, scan, out, arm_pose)) found.push_back(t);
+  for (auto& t : found) {
     if (t.name.rfind("midaxillary_", 0) == 0) t.weight = kReplacedMidaxillaryWeight;
     out.push_back(t);
   }
