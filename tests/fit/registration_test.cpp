@@ -378,7 +378,7 @@ TEST(Registration, ASubsetOfLandmarksPlacesTheAnatomyAgainAfterTheRefineStage) {
   EXPECT_GT(refines(subset), refines(plain));
   EXPECT_GE(refines(subset), 2);
   const auto& names = subset.summary.anatomical_landmark_names;
-  for (const char* name : {"acromion_R", "midaxillary_L", "pectoral_insertion_R", "lowest_breast_L"})
+  for (const char* name : {"xiphoid", "acromion_R", "midaxillary_L", "pectoral_insertion_R", "lowest_breast_L"})
     EXPECT_NE(std::find(names.begin(), names.end(), name), names.end()) << name;
   ScanTarget again(c.scan);
   const FitResult given = register_template(m, again, match_landmarks(m, all), FitOptions{});
