@@ -172,7 +172,10 @@ struct FitOptions {
   /// Fewer than all the landmarks: after the shape stage the acromia, mid-axillary points (arms on boards) and pectoral
   /// insertions not given are held for the refine stage where the scan shows them (shoulder_landmarks.h: the sternum's
   /// proportions; arms hanging, the insertion at the anterior axillary fold: pectoral_insertion.h), when found. With 3 or
-  /// more (but not all) landmarks given, they are placed again on the refined model and the refine stage runs once more.
+  /// more (but not all) landmarks given, they are placed again on the refined model and the refine stage runs once more,
+  /// each refine run with twice its iterations; with the notch and nipples given and the xiphoid not, the xiphoid is held
+  /// at the sternum length they predict (sternum_length.h); arms hanging, the mid-axillary points on the scan's chest
+  /// wall in front of the refined model's (hanging_midaxillary.h).
   bool anatomical_shoulders = true;
   double max_surface_mae_mm = 8.0;   ///< a final kept-correspondence MAE above this = not usable
   double min_kept_fraction = 0.25;   ///< fewer kept correspondences than this share = not usable
