@@ -116,36 +116,91 @@ TEST(Rasterizer, BackFaceNearerThanAFrontFaceIsDrawn) {
   }
 }
 
+/// The worst channel difference between `mesh` drawn supersampled (2×) and drawn at twice the
+/// size without supersampling, then box-filtered: what lighting a pixel once costs against
+/// shading every sample and averaging. Also counts the pixels drawn.
+int worst_against_per_sample_shading(const TriangleMesh& mesh, Projection proj, int* drawn) {
+  Camera cam = front_camera(3.0);
+  cam.eye = Vec3(-20, -40, 15);
+  cam.projection = proj;
+  cam.fov_y_deg = 2.0 * std::atan(1.5 / 48.0) * 180.0 / kPi;
+  RasterOptions ss2 = small_options(96);
+  ss2.supersample = 2;
+  RasterOptions big = small_options(192);
+  big.supersample = 1;
+  Rasterizer a(cam, ss2), b(cam, big);
+  a.draw_mesh(mesh);
+  b.draw_mesh(mesh);
+  const Image ia = a.resolve(), ib = b.resolve().downsampled(2);
+  int worst = 0;
+  for (int y = 0; y < ia.height(); ++y)
+    for (int x = 0; x < ia.width(); ++x) {
+      const Rgb p = ia.at(x, y), q = ib.at(x, y);
+      worst = std::max({worst, std::abs(p.r - q.r), std::abs(p.g - q.g), std::abs(p.b - q.b)});
+    }
+  *drawn = count_not(ia, {255, 255, 255});
+  return worst;
+}
+
+/// A unit sphere coloured by height, `rings` × `segments` quads.
+TriangleMesh coloured_sphere(int rings, int segments) {
+  TriangleMesh sphere = test::sphere_mesh(1.0, Vec3::Zero(), rings, segments);
+  sphere.C = Colors::Zero(sphere.V.rows(), 3);
+  for (Eigen::Index i = 0; i < sphere.V.rows(); ++i)  // colour varying across the surface
+    sphere.C.row(i) << 200, static_cast<std::uint8_t>(120 + 100 * sphere.V(i, 2)), 90;
+  return sphere;
+}
+
 // An output pixel whose samples all lie on one smooth patch is lit once with their mean normal
 // and colour: within a couple of grey levels of shading every sample and averaging (the same
 // scene drawn at twice the size without supersampling, then box-filtered).
 TEST(Rasterizer, PixelsLitOnceMatchPerSampleShading) {
   for (Projection proj : {Projection::Orthographic, Projection::Perspective}) {
-    Camera cam = front_camera(3.0);
-    cam.eye = Vec3(-20, -40, 15);
-    cam.projection = proj;
-    cam.fov_y_deg = 2.0 * std::atan(1.5 / 48.0) * 180.0 / kPi;
-    TriangleMesh sphere = test::sphere_mesh(1.0, Vec3::Zero(), 24, 48);
-    sphere.C = Colors::Zero(sphere.V.rows(), 3);
-    for (Eigen::Index i = 0; i < sphere.V.rows(); ++i)  // colour varying across the surface
-      sphere.C.row(i) << 200, static_cast<std::uint8_t>(120 + 100 * sphere.V(i, 2)), 90;
-    RasterOptions ss2 = small_options(96);
-    ss2.supersample = 2;
-    RasterOptions big = small_options(192);
-    big.supersample = 1;
-    Rasterizer a(cam, ss2), b(cam, big);
-    a.draw_mesh(sphere);
-    b.draw_mesh(sphere);
-    const Image ia = a.resolve(), ib = b.resolve().downsampled(2);
-    int worst = 0;
-    for (int y = 0; y < ia.height(); ++y)
-      for (int x = 0; x < ia.width(); ++x) {
-        const Rgb p = ia.at(x, y), q = ib.at(x, y);
-        worst = std::max({worst, std::abs(p.r - q.r), std::abs(p.g - q.g), std::abs(p.b - q.b)});
-      }
-    EXPECT_LE(worst, 2) << static_cast<int>(proj);
-    EXPECT_GT(count_not(ia, {255, 255, 255}), 1000);
+    int drawn = 0;
+    EXPECT_LE(worst_against_per_sample_shading(coloured_sphere(24, 48), proj, &drawn), 2) << static_cast<int>(proj);
+    EXPECT_GT(drawn, 1000);
   }
+}
+
+// The same with triangles smaller than a pixel (a dense scan in a small figure): a pixel of
+// several triangles samples each once, at the mean position of its samples on it.
+TEST(Rasterizer, PixelsOfTinyTrianglesMatchPerSampleShading) {
+  const TriangleMesh dense = coloured_sphere(160, 320);  // ~100k triangles, ~1 sample each
+  for (Projection proj : {Projection::Orthographic, Projection::Perspective}) {
+    int drawn = 0;
+    EXPECT_LE(worst_against_per_sample_shading(dense, proj, &drawn), 2) << static_cast<int>(proj);
+    EXPECT_GT(drawn, 1000);
+  }
+}
+
+// A fan of thin triangles around a point, corners at arbitrary sub-sample positions: every
+// sample inside the fan is covered by one of them (no cracks along the shared edges).
+TEST(Rasterizer, TrianglesSharingEdgesLeaveNoCracks) {
+  constexpr int kSpokes = 257;
+  TriangleMesh fan;
+  fan.V.resize(kSpokes + 1, 3);
+  fan.V.row(0) = Vec3(0.0123, 0, -0.0071).transpose();
+  for (int k = 0; k < kSpokes; ++k) {
+    const double a = 2 * kPi * k / kSpokes;
+    fan.V.row(k + 1) = Vec3(0.9 * std::cos(a), 0, 0.9 * std::sin(a)).transpose();
+  }
+  fan.F.resize(kSpokes, 3);
+  for (int k = 0; k < kSpokes; ++k) fan.F.row(k) << 0, 1 + (k + 1) % kSpokes, 1 + k;  // facing −y (the camera)
+  RasterOptions o = small_options(211);
+  o.supersample = 1;
+  Rasterizer r(front_camera(2.0), o);
+  r.draw_mesh(fan);
+  const Image img = r.resolve();
+  int holes = 0, inside = 0;
+  for (int y = 0; y < img.height(); ++y)
+    for (int x = 0; x < img.width(); ++x) {
+      const double px = (x + 0.5) / img.width() * 2.0 - 1.0, pz = 1.0 - (y + 0.5) / img.height() * 2.0;
+      if (std::hypot(px, pz) > 0.85) continue;  // well inside the polygon
+      ++inside;
+      holes += img.at(x, y) == Rgb{255, 255, 255} ? 1 : 0;
+    }
+  EXPECT_GT(inside, 15000);
+  EXPECT_EQ(holes, 0);
 }
 
 TEST(Rasterizer, VertexColoursAreInterpolated) {
