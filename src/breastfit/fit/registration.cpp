@@ -11,6 +11,7 @@
 #include "breastfit/fit/bilateral_check.h"
 #include "breastfit/fit/breast_fold.h"
 #include "breastfit/fit/combined_check.h"
+#include "breastfit/fit/hanging_breast_fold.h"
 #include "breastfit/fit/hanging_midaxillary.h"
 #include "breastfit/fit/initialization.h"
 #include "breastfit/fit/jugular_notch.h"
@@ -256,10 +257,12 @@ std::optional<Vec3> held_or_posed(const model::RiggedModel& model, const Points&
 
 // The lowest breast points not given, placed again once the shape is fitted: by proportions of
 // the held notch, the fitted xiphoid and the held nipples (breast_fold.h); each replaces the fold's
-// target in `held` when found.
+// target in `held` when found. With a subset of the landmarks given (`under_hanging_breasts`), where
+// the breast hangs over the fold's height, at the bottom of its lower pole instead
+// (hanging_breast_fold.h).
 void place_folds_by_proportion(const model::RiggedModel& model, const Points& V, const model::PoseParams& params,
                                const ScanTarget& scan, const std::vector<LandmarkTarget>& given,
-                               std::vector<LandmarkTarget>& held) {
+                               std::vector<LandmarkTarget>& held, bool under_hanging_breasts) {
   const auto notch = held_or_posed(model, V, params, held, "sternal_notch");
   const auto xiphoid = held_or_posed(model, V, params, held, "xiphoid");
   const auto right = held_or_posed(model, V, params, held, "nipple_R");
@@ -271,7 +274,16 @@ void place_folds_by_proportion(const model::RiggedModel& model, const Points& V,
     const auto frame = sternum_frame(*notch, *xiphoid, *right, *left, side);
     if (!idx || !frame || is_given(given, name)) continue;
     const Vec3 fitted = model_landmark_position(model, *idx, V, params);
-    const auto fold = lowest_breast_by_proportion(scan.mesh().V, side == 'R' ? *right : *left, fitted, *frame);
+    const Vec3& tip = side == 'R' ? *right : *left;
+    std::optional<Vec3> fold;
+    const double height = -lowest_breast_drop_mm(*frame, -sternum_coordinates(*frame, tip).height);
+    if (under_hanging_breasts && breast_hangs_over_fold(scan.mesh().V, tip, fitted, *frame, height)) {
+      // The slice meets the hanging breast's front: the bottom of its lower pole (hanging_breast_fold.h),
+      // or the shape stage's target kept.
+      fold = hanging_breast_fold_on_scan(scan.mesh().V, tip, fitted, *frame, height);
+    } else {
+      fold = lowest_breast_by_proportion(scan.mesh().V, tip, fitted, *frame);
+    }
     if (!fold) continue;
     const LandmarkTarget target{name, *idx, *fold, landmark_weight(name)};
     const auto at = std::find_if(held.begin(), held.end(), [&](const LandmarkTarget& t) { return t.name == name; });
@@ -765,7 +777,9 @@ FitResult register_template(const model::RiggedModel& model, ScanTarget& scan, s
           const Points& shaped = problem_ptr->evaluator().vertices();
           const size_t before = held.size();
           if (landmarks.size() >= 3 && hold_shoulders) place_xiphoid_by_nipples(model, shaped, params, landmarks, held);
-          if (hold_folds) place_folds_by_proportion(model, shaped, params, scan, landmarks, held);
+          if (hold_folds)
+            place_folds_by_proportion(model, shaped, params, scan, landmarks, held,
+                                      landmarks.size() >= 3 && hold_shoulders);
           if (hold_shoulders)
             for (auto& t : shoulder_targets(model, shaped, params, scan, held, summary.orientation.arm_pose))
               held.push_back(t);
