@@ -11,6 +11,7 @@
 #include "breastfit/fit/bilateral_check.h"
 #include "breastfit/fit/breast_fold.h"
 #include "breastfit/fit/combined_check.h"
+#include "breastfit/fit/hanging_acromion.h"
 #include "breastfit/fit/hanging_breast_fold.h"
 #include "breastfit/fit/hanging_midaxillary.h"
 #include "breastfit/fit/initialization.h"
@@ -371,7 +372,8 @@ bool is_shoulder_landmark(const std::string& name) {
 
 // Arms hanging (the orientation search and the scan agree, as in shoulder_targets), with a subset
 // of the landmarks given: the mid-axillary points not in `held` on the scan's chest wall in front
-// of the fitted points (hanging_midaxillary.h).
+// of the fitted points (hanging_midaxillary.h), the acromia not in `held` at the fitted points moved
+// up and towards the midline (hanging_acromion.h).
 std::vector<LandmarkTarget> hanging_midaxillary_targets(const model::RiggedModel& model, const Points& V,
                                                         const model::PoseParams& params, const ScanTarget& scan,
                                                         const std::vector<LandmarkTarget>& held,
@@ -388,9 +390,13 @@ std::vector<LandmarkTarget> hanging_midaxillary_targets(const model::RiggedModel
     if (!frame || arms_abducted_on_scan(S, *frame)) return out;
     const std::string name = std::string("midaxillary_") + side;
     const auto idx = model.landmark_index(name);
-    if (!idx || is_given(held, name)) continue;
-    if (const auto found = hanging_midaxillary_on_scan(S, model_landmark_position(model, *idx, V, params), *frame))
-      out.push_back({name, *idx, *found, 1.0});
+    if (idx && !is_given(held, name))
+      if (const auto found = hanging_midaxillary_on_scan(S, model_landmark_position(model, *idx, V, params), *frame))
+        out.push_back({name, *idx, *found, 1.0});
+    const std::string acromion = std::string("acromion_") + side;
+    const auto a = model.landmark_index(acromion);
+    if (a && !is_given(held, acromion))
+      out.push_back({acromion, *a, hanging_acromion_target(model_landmark_position(model, *a, V, params), *frame), 1.0});
   }
   return out;
 }
