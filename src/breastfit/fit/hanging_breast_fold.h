@@ -5,11 +5,11 @@
 /// (lowest_breast_by_proportion, breast_fold.h): the front-most skin of a sagittal strip at the
 /// fold's predicted height. On a breast that hangs over its fold that slice still meets the
 /// breast's front: on the benchmark's and the generated validation torsos the front-most skin there
-/// lay 2–16 mm behind the breast's tip on the four hanging sides (two torsos, standing) and ≥ 30 mm
-/// behind it on all the other 56 sides and on 26 template-made ones (the fold itself 45–75 mm), and
-/// those four targets were 37–57 mm from the truth. The truth lies at the bottom of the lower pole,
+/// lay 2–16 mm behind the breast's tip on the four hanging sides (two torsos, standing), ≥ 40 mm
+/// behind it on the other 56 sides and ≥ 30 mm on 26 template-made ones (the fold itself 45–75 mm),
+/// and those four targets were 37–57 mm from the truth. The truth lies at the bottom of the lower pole,
 /// where the breast meets the chest wall: going down the strip from that height, the front-most
-/// skin falls back by 40–60 mm from one 3 mm slice to the next (the breast's underside, unseen by
+/// skin falls back by 42–66 mm from one 3 mm slice to the next (the breast's underside, unseen by
 /// the scanner, to the chest wall below it). The point returned lies at the last slice with breast,
 /// halfway between the breast's front there and the chest wall below (the crease is under the
 /// breast, between the two): 7.6–11 mm from the truth on those four sides.
@@ -22,14 +22,14 @@ namespace breastfit::fit {
 
 struct HangingBreastFoldOptions {
   /// The breast hangs over its fold when the front-most skin at the fold's height lies less than
-  /// this behind the tip (the 60 sides: 2–16 mm hanging, ≥ 30 mm otherwise; halfway in between).
+  /// this behind the tip (2–16 mm on the hanging sides, ≥ 30 mm on all others; halfway in between).
   double max_behind_tip_mm = 23.0;
   double strip_half_width_mm = 8.0;    ///< half-width of the sagittal strip (across the body)
   double height_half_window_mm = 3.0;  ///< half-height of the slice at the fold's height
   double max_in_front_of_tip_mm = 5.0; ///< scan farther in front of the tip is not the breast
   double bin_mm = 3.0;                 ///< slices below that height
   /// The breast's bottom: the front-most skin falls back by more than this from one slice to the
-  /// next (40–60 mm on the hanging sides).
+  /// next (42–66 mm on the hanging sides).
   double min_fall_mm = 20.0;
   double max_below_mm = 60.0;          ///< the bottom sought this far below the fold's height, else refused
 };
