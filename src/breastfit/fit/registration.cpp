@@ -11,6 +11,8 @@
 #include "breastfit/fit/bilateral_check.h"
 #include "breastfit/fit/breast_fold.h"
 #include "breastfit/fit/combined_check.h"
+#include "breastfit/fit/hanging_acromion.h"
+#include "breastfit/fit/hanging_breast_fold.h"
 #include "breastfit/fit/hanging_midaxillary.h"
 #include "breastfit/fit/initialization.h"
 #include "breastfit/fit/jugular_notch.h"
@@ -256,10 +258,12 @@ std::optional<Vec3> held_or_posed(const model::RiggedModel& model, const Points&
 
 // The lowest breast points not given, placed again once the shape is fitted: by proportions of
 // the held notch, the fitted xiphoid and the held nipples (breast_fold.h); each replaces the fold's
-// target in `held` when found.
+// target in `held` when found. With a subset of the landmarks given (`under_hanging_breasts`), where
+// the breast hangs over the fold's height, at the bottom of its lower pole instead
+// (hanging_breast_fold.h).
 void place_folds_by_proportion(const model::RiggedModel& model, const Points& V, const model::PoseParams& params,
                                const ScanTarget& scan, const std::vector<LandmarkTarget>& given,
-                               std::vector<LandmarkTarget>& held) {
+                               std::vector<LandmarkTarget>& held, bool under_hanging_breasts) {
   const auto notch = held_or_posed(model, V, params, held, "sternal_notch");
   const auto xiphoid = held_or_posed(model, V, params, held, "xiphoid");
   const auto right = held_or_posed(model, V, params, held, "nipple_R");
@@ -271,7 +275,16 @@ void place_folds_by_proportion(const model::RiggedModel& model, const Points& V,
     const auto frame = sternum_frame(*notch, *xiphoid, *right, *left, side);
     if (!idx || !frame || is_given(given, name)) continue;
     const Vec3 fitted = model_landmark_position(model, *idx, V, params);
-    const auto fold = lowest_breast_by_proportion(scan.mesh().V, side == 'R' ? *right : *left, fitted, *frame);
+    const Vec3& tip = side == 'R' ? *right : *left;
+    std::optional<Vec3> fold;
+    const double height = -lowest_breast_drop_mm(*frame, -sternum_coordinates(*frame, tip).height);
+    if (under_hanging_breasts && breast_hangs_over_fold(scan.mesh().V, tip, fitted, *frame, height)) {
+      // The slice meets the hanging breast's front: the bottom of its lower pole (hanging_breast_fold.h),
+      // or the shape stage's target kept.
+      fold = hanging_breast_fold_on_scan(scan.mesh().V, tip, fitted, *frame, height);
+    } else {
+      fold = lowest_breast_by_proportion(scan.mesh().V, tip, fitted, *frame);
+    }
     if (!fold) continue;
     const LandmarkTarget target{name, *idx, *fold, landmark_weight(name)};
     const auto at = std::find_if(held.begin(), held.end(), [&](const LandmarkTarget& t) { return t.name == name; });
@@ -359,7 +372,8 @@ bool is_shoulder_landmark(const std::string& name) {
 
 // Arms hanging (the orientation search and the scan agree, as in shoulder_targets), with a subset
 // of the landmarks given: the mid-axillary points not in `held` on the scan's chest wall in front
-// of the fitted points (hanging_midaxillary.h).
+// of the fitted points (hanging_midaxillary.h), the acromia not in `held` at the fitted points moved
+// up and towards the midline (hanging_acromion.h).
 std::vector<LandmarkTarget> hanging_midaxillary_targets(const model::RiggedModel& model, const Points& V,
                                                         const model::PoseParams& params, const ScanTarget& scan,
                                                         const std::vector<LandmarkTarget>& held,
@@ -376,9 +390,13 @@ std::vector<LandmarkTarget> hanging_midaxillary_targets(const model::RiggedModel
     if (!frame || arms_abducted_on_scan(S, *frame)) return out;
     const std::string name = std::string("midaxillary_") + side;
     const auto idx = model.landmark_index(name);
-    if (!idx || is_given(held, name)) continue;
-    if (const auto found = hanging_midaxillary_on_scan(S, model_landmark_position(model, *idx, V, params), *frame))
-      out.push_back({name, *idx, *found, 1.0});
+    if (idx && !is_given(held, name))
+      if (const auto found = hanging_midaxillary_on_scan(S, model_landmark_position(model, *idx, V, params), *frame))
+        out.push_back({name, *idx, *found, 1.0});
+    const std::string acromion = std::string("acromion_") + side;
+    const auto a = model.landmark_index(acromion);
+    if (a && !is_given(held, acromion))
+      out.push_back({acromion, *a, hanging_acromion_target(model_landmark_position(model, *a, V, params), *frame), 1.0});
   }
   return out;
 }
@@ -765,7 +783,9 @@ FitResult register_template(const model::RiggedModel& model, ScanTarget& scan, s
           const Points& shaped = problem_ptr->evaluator().vertices();
           const size_t before = held.size();
           if (landmarks.size() >= 3 && hold_shoulders) place_xiphoid_by_nipples(model, shaped, params, landmarks, held);
-          if (hold_folds) place_folds_by_proportion(model, shaped, params, scan, landmarks, held);
+          if (hold_folds)
+            place_folds_by_proportion(model, shaped, params, scan, landmarks, held,
+                                      landmarks.size() >= 3 && hold_shoulders);
           if (hold_shoulders)
             for (auto& t : shoulder_targets(model, shaped, params, scan, held, summary.orientation.arm_pose))
               held.push_back(t);
