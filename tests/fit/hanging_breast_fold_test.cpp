@@ -9,19 +9,10 @@
 #include <cmath>
 #include <functional>
 
+#include "fit/unit_sternum_frame.h"
+
 namespace breastfit::fit {
 namespace {
-
-// Notch at the origin, a 200 mm sternum, up z, front y, lateral x.
-SternumFrame unit_frame() {
-  SternumFrame f;
-  f.notch = Vec3::Zero();
-  f.length_mm = 200.0;
-  f.up = Vec3::UnitZ();
-  f.front = Vec3::UnitY();
-  f.lateral = Vec3::UnitX();
-  return f;
-}
 
 // A 1 mm grid over laterals 90…110 and heights −350…−150: the chest wall at front −40 everywhere,
 // and in front of it the breast's skin at `breast_front(height)` where that is finite.
@@ -59,7 +50,7 @@ const Vec3 kTip(100, 36, -250);
 const Vec3 kFitted(100, -30, -285);
 
 TEST(HangingBreastFold, TheSliceAtTheFoldsHeightMeetsAHangingBreastOnly) {
-  const SternumFrame f = unit_frame();
+  const SternumFrame f = test::unit_sternum_frame();
   // Hanging: at −285 the front is 13.25, 22.75 behind the tip (< 23).
   EXPECT_TRUE(breast_hangs_over_fold(torso(hanging), kTip, kFitted, f, -285.0));
   // Receding: at −285 only the chest wall, 76 behind the tip.
@@ -73,7 +64,7 @@ TEST(HangingBreastFold, TheSliceAtTheFoldsHeightMeetsAHangingBreastOnly) {
 }
 
 TEST(HangingBreastFold, TheBottomOfTheLowerPoleHalfwayToTheChestWall) {
-  const SternumFrame f = unit_frame();
+  const SternumFrame f = test::unit_sternum_frame();
   const auto p = hanging_breast_fold_on_scan(torso(hanging), kTip, kFitted, f, -285.0);
   ASSERT_TRUE(p.has_value());
   // The last 3 mm slice with breast: −291 (within ±1.5 mm it holds the breast's bottom row at −290,
@@ -84,7 +75,7 @@ TEST(HangingBreastFold, TheBottomOfTheLowerPoleHalfwayToTheChestWall) {
 }
 
 TEST(HangingBreastFold, AHoleBelowTheBreastIsSkipped) {
-  const SternumFrame f = unit_frame();
+  const SternumFrame f = test::unit_sternum_frame();
   Points V = torso(hanging);
   // No scan at all from −295 to −289 (the unseen underside and the chest wall just below).
   std::vector<Index> keep;
@@ -101,7 +92,7 @@ TEST(HangingBreastFold, AHoleBelowTheBreastIsSkipped) {
 }
 
 TEST(HangingBreastFold, RefusedWithoutAFallWithinReach) {
-  const SternumFrame f = unit_frame();
+  const SternumFrame f = test::unit_sternum_frame();
   // The breast's front never falls by more than 20 mm from one slice to the next: a smooth descent.
   const auto smooth = [](double h) { return h > -200 ? kNone : 36.0 - (-200 - h) * 0.5; };
   EXPECT_FALSE(hanging_breast_fold_on_scan(torso(smooth), kTip, kFitted, f, -285.0).has_value());

@@ -8,22 +8,12 @@
 #include <cmath>
 
 #include "fit/synth_anatomy.h"
+#include "fit/unit_sternum_frame.h"
 
 namespace breastfit::fit {
 namespace {
 
 using namespace test_anatomy;
-
-// Notch at the origin, a 200 mm sternum, up z, front y, lateral x.
-SternumFrame unit_frame() {
-  SternumFrame f;
-  f.notch = Vec3::Zero();
-  f.length_mm = 200.0;
-  f.up = Vec3::UnitZ();
-  f.front = Vec3::UnitY();
-  f.lateral = Vec3::UnitX();
-  return f;
-}
 
 // A side wall at `lateral` mm: a 1 mm grid over heights −200…−100 and fronts −120…−40.
 Points wall(double lateral) {
@@ -35,7 +25,7 @@ Points wall(double lateral) {
 }
 
 TEST(HangingMidaxillary, TheStripInFrontOfTheFittedPointAtTheProportionsHeight) {
-  const SternumFrame f = unit_frame();
+  const SternumFrame f = test::unit_sternum_frame();
   Points V = wall(150.0);
   V.row(0) = Vec3(146.0, -83.0, -144.0).transpose();  // nearer across the body, inside the strip
   const Vec3 fitted(145.0, -90.0, -135.0);
@@ -48,7 +38,7 @@ TEST(HangingMidaxillary, TheStripInFrontOfTheFittedPointAtTheProportionsHeight) 
 }
 
 TEST(HangingMidaxillary, RefusedWithoutScanInTheStripOrFarFromTheFittedPoint) {
-  const SternumFrame f = unit_frame();
+  const SternumFrame f = test::unit_sternum_frame();
   // The wall 40 mm beyond the fitted point across the body (an arm met instead of the chest).
   EXPECT_FALSE(hanging_midaxillary_on_scan(wall(190.0), Vec3(150.0, -90.0, -144.0), f));
   EXPECT_TRUE(hanging_midaxillary_on_scan(wall(155.0), Vec3(150.0, -90.0, -144.0), f));  // any of the strip < 15 mm

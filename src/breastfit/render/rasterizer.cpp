@@ -100,6 +100,20 @@ Linear edge_function(const Projected& a, const Projected& b, double scale) {
   return {-ey * scale, ex * scale, (ey * a.x - ex * a.y) * scale};
 }
 
+/// A triangle's barycentric coordinates as linear functions of the pixel position (its edge
+/// functions over its signed area, twice) and, orthographic, its depth from them.
+struct TrianglePlanes {
+  Linear e0, e1, e2, depth;
+};
+TrianglePlanes triangle_planes(const Projected& p0, const Projected& p1, const Projected& p2, double area) {
+  const double inv_area = 1.0 / area;
+  const Linear e0 = edge_function(p1, p2, inv_area), e1 = edge_function(p2, p0, inv_area),
+               e2 = edge_function(p0, p1, inv_area);
+  return {e0, e1, e2,
+          {e0.dx * p0.depth + e1.dx * p1.depth + e2.dx * p2.depth, e0.dy * p0.depth + e1.dy * p1.depth + e2.dy * p2.depth,
+           e0.c * p0.depth + e1.c * p1.depth + e2.c * p2.depth}};
+}
+
 /// An image position in fixed point: kSubpixelBits fractional bits of a (supersampled) sample.
 /// Edge functions of fixed-point corners are exact integers, so a sample on an edge shared by
 /// two triangles is inside both (no cracks, whatever the order of evaluation).
@@ -329,12 +343,7 @@ void Rasterizer::draw_mesh(const Points& V, const Triangles& F, const Points& N,
       const std::int64_t sign = fixed_area > 0 ? 1 : -1;
       const FixedEdge g0 = fixed_edge(f1, f2, xs.lo, ys.lo, sign), g1 = fixed_edge(f2, f0, xs.lo, ys.lo, sign),
                       g2 = fixed_edge(f0, f1, xs.lo, ys.lo, sign);
-      const double inv_area = 1.0 / area;
-      const Linear e0 = edge_function(p1, p2, inv_area), e1 = edge_function(p2, p0, inv_area),
-                   e2 = edge_function(p0, p1, inv_area);
-      const Linear ez{e0.dx * p0.depth + e1.dx * p1.depth + e2.dx * p2.depth,
-                      e0.dy * p0.depth + e1.dy * p1.depth + e2.dy * p2.depth,
-                      e0.c * p0.depth + e1.c * p1.depth + e2.c * p2.depth};
+      const Linear ez = triangle_planes(p0, p1, p2, area).depth;
       std::int64_t r0 = g0.at_origin, r1 = g1.at_origin, r2 = g2.at_origin;
       bool wrote = false;
       for (int y = ys.lo; y <= ys.hi; ++y, r0 += g0.step_y, r1 += g1.step_y, r2 += g2.step_y) {
@@ -362,13 +371,9 @@ void Rasterizer::draw_mesh(const Points& V, const Triangles& F, const Points& N,
     const double w1 = perspective ? 1.0 / p1.depth : 1.0;
     const double w2 = perspective ? 1.0 / p2.depth : 1.0;
     // The edge functions are linear in the pixel position: step them along each row.
-    const double inv_area = 1.0 / area;
-    const Linear e0 = edge_function(p1, p2, inv_area), e1 = edge_function(p2, p0, inv_area),
-                 e2 = edge_function(p0, p1, inv_area);
-    // Orthographic: the depth is linear in the pixel position too.
-    const Linear ez{e0.dx * p0.depth + e1.dx * p1.depth + e2.dx * p2.depth,
-                    e0.dy * p0.depth + e1.dy * p1.depth + e2.dy * p2.depth,
-                    e0.c * p0.depth + e1.c * p1.depth + e2.c * p2.depth};
+    const TrianglePlanes planes = triangle_planes(p0, p1, p2, area);
+    const Linear &e0 = planes.e0, &e1 = planes.e1, &e2 = planes.e2;
+    const Linear& ez = planes.depth;  // orthographic: the depth is linear in the pixel position too
     const Linear* edges[3] = {&e0, &e1, &e2};
     // Where each edge function crosses zero along a row: −a / dx, by a reciprocal taken once per
     // triangle (the one-sample widening below absorbs its rounding).
