@@ -55,7 +55,8 @@ struct LandmarkCheck {
   double tolerance_mm = 0;
   double factor = 1;        ///< robust factor the fit's last stage gave it (1 = full weight)
   /// Given landmark ↔ the landmark found on the scan by its own anatomical definition — the
-  /// nipples: the breast's tip (breast_tip_on_scan) or apex (nipple_apex_check.h); the sternal
+  /// nipples: the breast's tip (breast_tip_on_scan), apex (nipple_apex_check.h) or the nipple's
+  /// own bump (nipple_bump_check.h, where the scan shows a distinct one); the sternal
   /// notch: the jugular notch on the other landmarks' midline (midline_notch_check.h); the pairs'
   /// mirror image (bilateral_check.h); the insertions' arm (pectoral_check.h); the xiphoid: the
   /// lowest breast points' height (xiphoid_check.h); any of them with the prediction agreeing

@@ -20,6 +20,7 @@
 #include "breastfit/fit/midline_notch_check.h"
 #include "breastfit/fit/nipple_apex.h"
 #include "breastfit/fit/nipple_apex_check.h"
+#include "breastfit/fit/nipple_bump_check.h"
 #include "breastfit/fit/orientation_search.h"
 #include "breastfit/fit/parallel_chunks.h"
 #include "breastfit/fit/pectoral_check.h"
@@ -607,6 +608,24 @@ void check_agreement(const model::RiggedModel& model, const Points& V, const mod
   }
 }
 
+// Session 15 (docs/REGISTRATION.md): each given nipple against the nipple's own bump on the scan
+// (nipple_bump_check.h), searched around its prediction (the fitted one without predictions).
+void check_nipple_bumps(const model::RiggedModel& model, const Points& V, const model::PoseParams& params,
+                        const ScanTarget& scan, const std::vector<LandmarkTarget>& given,
+                        const std::vector<Vec3>& predicted, const FitOptions& options, Points& scan_N,
+                        std::vector<std::optional<AnatomyCheck>>& out) {
+  for (size_t i = 0; i < given.size(); ++i) {
+    const LandmarkTarget& t = given[i];
+    if (t.name != "nipple_R" && t.name != "nipple_L") continue;
+    if (scan_N.rows() == 0) scan_N = scan.normal_sign() * scan.vertex_normals();
+    const Vec3 near = i < predicted.size() ? predicted[i] : model_landmark_position(model, t.model_landmark, V, params);
+    const auto bump = nipple_bump_on_scan(scan.mesh().V, scan_N, near);
+    if (!bump) continue;
+    const NippleBumpCheck c = check_nipple_bump(t.position, *bump, options.landmark_check_mm);
+    keep_if_worse(out[i], AnatomyCheck{c.distance_mm, c.tolerance_mm, "the nipple's bump on the scan"});
+  }
+}
+
 // Each given nipple and sternal notch against its own definition on the scan, searched around
 // where the other landmarks put it (`predicted`; the fitted one without predictions, since the
 // fit follows a wrong click): the nipples at the breast's tip (landmark_check.h; along the scan's
@@ -640,6 +659,7 @@ std::vector<std::optional<AnatomyCheck>> check_anatomy(const model::RiggedModel&
   check_pairs(given, options, out);
   check_insertions(model, V, params, given, predicted, options, out);
   check_agreement(model, V, params, scan, axes, given, predicted, options, scan_N, out);
+  check_nipple_bumps(model, V, params, scan, given, predicted, options, scan_N, out);
   return out;
 }
 
