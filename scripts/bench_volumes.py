@@ -49,10 +49,7 @@ def markups_from_curves(curves, names, units):
 
 def run_volume(binary, mesh, curves_file, units, tmp, fill="membrane"):
     """{curve name: volume_ml} from `breastfit volume`, or raises RuntimeError with its message."""
-    out = os.path.join(tmp, "volume.json")
-    if os.path.exists(out):
-        os.remove(out)
-    cmd = [binary, "volume", mesh, "--curves", curves_file, "--quiet", "--json", out, "--fill", fill]
+    cmd = [binary, "volume", mesh, "--curves", curves_file, "--json", "--fill", fill]  # JSON on stdout
     for _, name in SIDES:
         cmd += ["--name", name]
     if units:
@@ -61,8 +58,7 @@ def run_volume(binary, mesh, curves_file, units, tmp, fill="membrane"):
     if p.returncode != 0:
         msg = (p.stderr or p.stdout).strip().splitlines()
         raise RuntimeError(msg[-1] if msg else f"exit {p.returncode}")
-    with open(out) as f:
-        return {c["name"]: c["volume_ml"] for c in json.load(f)["curves"]}
+    return {c["name"]: c["volume_ml"] for c in json.loads(p.stdout)["curves"]}
 
 
 def report_volumes(report_path):

@@ -61,8 +61,8 @@ void register_batch(CLI::App& app, int& exit_code) {
                   "(scan.ply + landmarks.mrk.json) or a directory of case directories")
       ->required();
   sub->add_option("--out,-o", args->out, "output directory (created)")->required();
-  sub->add_option("--jobs,-j", args->jobs, "cases registered at the same time (default: the number of cores)")
-      ->check(CLI::NonNegativeNumber);
+  sub->add_option("--jobs,-j", args->jobs, "cases registered at the same time (default 0: the number of cores)")
+      ->check(CLI::Range(0, 1024));
   sub->add_option("--template,-t", args->template_path, "rigged template (.glb/.gltf); default: the shipped torso");
   sub->add_option("--units", args->units, "scan units: auto (from each scan's extent), mm or m")
       ->check(CLI::IsMember({"auto", "mm", "m"}));

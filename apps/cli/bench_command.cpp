@@ -10,7 +10,6 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
 #include <map>
 #include <memory>
 #include <iostream>
@@ -134,13 +133,13 @@ std::vector<double> time_suggests(const std::filesystem::path& dir, const std::s
 }
 
 // Deviations of the re-fits from `what`: median and largest over the re-fits of each measure.
-void print_deviations(const std::string& what, const std::vector<pipeline::FitDeviation>& d) {
+void print_deviations(FILE* text, const std::string& what, const std::vector<pipeline::FitDeviation>& d) {
   auto row = [&](const char* what, double pipeline::FitDeviation::*field) {
     std::vector<double> v;
     for (const auto& x : d) v.push_back(x.*field);
-    std::printf("  %-28s median %.3f mm, max %.3f mm\n", what, median(v), v.empty() ? 0.0 : *std::max_element(v.begin(), v.end()));
+    std::fprintf(text, "  %-28s median %.3f mm, max %.3f mm\n", what, median(v), v.empty() ? 0.0 : *std::max_element(v.begin(), v.end()));
   };
-  std::printf("re-fit vs %s (%zu pairs, both usable):\n", what.c_str(), d.size());
+  std::fprintf(text, "re-fit vs %s (%zu pairs, both usable):\n", what.c_str(), d.size());
   row("surface, median vertex", &pipeline::FitDeviation::surface_median_mm);
   row("surface, farthest vertex", &pipeline::FitDeviation::surface_max_mm);
   row("landmarks, farthest", &pipeline::FitDeviation::landmarks_max_mm);
@@ -151,10 +150,10 @@ void print_deviations(const std::string& what, const std::vector<pipeline::FitDe
 
 void register_bench(CLI::App& app, int& exit_code) {
   struct Args {
-    std::string dir, template_path, template_mesh, config, json_out;
+    std::string dir, template_path, template_mesh, config;
     int repeat = 5;
     double refit_mm = 10.0;
-    bool no_landmarks = false, refit = false, suggest = false, compare_cold = false;
+    bool no_landmarks = false, refit = false, suggest = false, compare_cold = false, json = false;
     FitFlags fit;
   };
   auto args = std::make_shared<Args>();
@@ -179,9 +178,11 @@ void register_bench(CLI::App& app, int& exit_code) {
   sub->add_option("--template,-t", args->template_path, "rigged template (.glb/.gltf)");
   sub->add_option("--mesh", args->template_mesh, "the template's skinned mesh to use when its file has several (node or mesh name)");
   sub->add_option("--config", args->config, "JSON file with fit options");
-  sub->add_option("--json", args->json_out, "also write every number to this JSON file");
+  sub->add_flag("--json", args->json,
+                "print every number as JSON on stdout (the table goes to stderr; as every --json: redirect it to keep it)");
   add_fit_flags(*sub, args->fit);
   sub->callback([args, &exit_code] {
+    FILE* text = args->json ? stderr : stdout;  // the table; stdout is the JSON's with --json
     if (args->refit && args->suggest) throw InvalidInput("bench: --refit and --suggest time different things: choose one");
     const auto model = std::make_shared<const model::RiggedModel>(load_template(args->template_path, args->template_mesh));
     auto options = load_fit_options(args->config, args->fit);
@@ -195,7 +196,7 @@ void register_bench(CLI::App& app, int& exit_code) {
       std::map<std::string, std::vector<double>> phases_ms;
       std::vector<double> iterations;
       RefitDeviations deviations;
-      std::printf("%-24s %12s %12s %12s %8s\n", "case", (job + "_ms_med").c_str(), (job + "_ms_max").c_str(), "cpu_ms_med",
+      std::fprintf(text, "%-24s %12s %12s %12s %8s\n", "case", (job + "_ms_med").c_str(), (job + "_ms_max").c_str(), "cpu_ms_med",
                   "status");
       for (const auto& dir : experiments::find_case_dirs(args->dir)) {
         bool usable = false;
@@ -210,7 +211,7 @@ void register_bench(CLI::App& app, int& exit_code) {
         all_cpu.insert(all_cpu.end(), cpu.begin(), cpu.end());
         medians.push_back(median(ms));
         cpu_medians.push_back(median(cpu));
-        std::printf("%-24s %12.1f %12.1f %12.1f %8s\n", dir.filename().string().c_str(), median(ms),
+        std::fprintf(text, "%-24s %12.1f %12.1f %12.1f %8s\n", dir.filename().string().c_str(), median(ms),
                     ms.empty() ? 0.0 : *std::max_element(ms.begin(), ms.end()), median(cpu), usable ? "ok" : "FAILED");
         cases.push_back({{"case", dir.filename().string()}, {job + "_ms_median", median(ms)}, {job + "_ms_all", ms},
                          {job + "_cpu_ms_median", median(cpu)}, {job + "_cpu_ms_all", cpu}, {"usable", usable}});
@@ -221,25 +222,23 @@ void register_bench(CLI::App& app, int& exit_code) {
       }
       char what[64] = "suggest";
       if (!args->suggest) std::snprintf(what, sizeof what, "re-fit after a %.1f mm move", args->refit_mm);
-      std::printf("%s, median of all %zu: %.1f ms wall, %.1f ms CPU (median of the case medians: %.1f ms wall, "
+      std::fprintf(text, "%s, median of all %zu: %.1f ms wall, %.1f ms CPU (median of the case medians: %.1f ms wall, "
                   "%.1f ms CPU)\n",
                   what, all.size(), median(all), median(all_cpu), median(medians), median(cpu_medians));
       if (args->refit)
-        std::printf("re-fit's first result (the fitted model and drawings; the landmark checks, distances and "
+        std::fprintf(text, "re-fit's first result (the fitted model and drawings; the landmark checks, distances and "
                     "measurements follow), median of all %zu: %.1f ms wall, %.1f ms CPU\n",
                     all_first.size(), median(all_first), median(all_first_cpu));
       if (!phases_ms.empty()) {
-        std::printf("re-fits: median %.1f iterations; phases (median ms, wall):", median(iterations));
-        for (const auto& [phase, v] : phases_ms) std::printf(" %s %.1f", phase.c_str(), median(v));
-        std::printf("\n");
+        std::fprintf(text, "re-fits: median %.1f iterations; phases (median ms, wall):", median(iterations));
+        for (const auto& [phase, v] : phases_ms) std::fprintf(text, " %s %.1f", phase.c_str(), median(v));
+        std::fprintf(text, "\n");
       }
       if (args->compare_cold) {
-        print_deviations("the same re-fit with the whole refine stage", deviations.full_refine);
-        print_deviations("a full fit from scratch with the same landmarks", deviations.cold);
+        print_deviations(text, "the same re-fit with the whole refine stage", deviations.full_refine);
+        print_deviations(text, "a full fit from scratch with the same landmarks", deviations.cold);
       }
-      if (!args->json_out.empty()) {
-        std::ofstream f(args->json_out);
-        if (!f) throw IoError(args->json_out, "cannot open for writing");
+      if (args->json) {
         nlohmann::json j{{"cases", cases}, {"median_" + job + "_ms", median(all)}, {"median_" + job + "_cpu_ms", median(all_cpu)},
                          {"repeat", args->repeat}};
         if (args->refit) {
@@ -247,7 +246,7 @@ void register_bench(CLI::App& app, int& exit_code) {
           j["median_first_result_ms"] = median(all_first);
           j["median_first_result_cpu_ms"] = median(all_first_cpu);
         }
-        f << j.dump(1) << "\n";
+        std::cout << j.dump(1) << "\n";
       }
       return;
     }
@@ -257,7 +256,7 @@ void register_bench(CLI::App& app, int& exit_code) {
     pipeline::RegisterOutputOptions output_options;
     output_options.report_html = false;
     const pipeline::RegisterOutputOptions full_options;  // the default: with report.html
-    std::printf("%-24s %9s %9s %9s %9s %9s %10s %6s %10s %10s %8s\n", "case", "time_s", "total_s", "full_s", "cpu_s",
+    std::fprintf(text, "%-24s %9s %9s %9s %9s %9s %10s %6s %10s %10s %8s\n", "case", "time_s", "total_s", "full_s", "cpu_s",
                 "tot_cpu_s", "full_cpu_s", "iters", "surf_mae", "lm_mae", "status");
     std::vector<double> cpu_medians, total_cpu_medians, full_cpu_medians;
     for (const auto& dir : experiments::find_case_dirs(args->dir)) {
@@ -310,7 +309,7 @@ void register_bench(CLI::App& app, int& exit_code) {
       cpu_medians.push_back(median(cpus));
       total_cpu_medians.push_back(median(total_cpus));
       full_cpu_medians.push_back(median(full_cpus));
-      std::printf("%-24s %9.4f %9.4f %9.4f %9.4f %9.4f %10.4f %6zu %10.3f %10.3f %8s\n", dir.filename().string().c_str(),
+      std::fprintf(text, "%-24s %9.4f %9.4f %9.4f %9.4f %9.4f %10.4f %6zu %10.3f %10.3f %8s\n", dir.filename().string().c_str(),
                   med, total_med, full_med, median(cpus), median(total_cpus), median(full_cpus),
                   last.fit.summary.iterations.size(),
                   last.surface.mae, last.landmarks.stats.mae, last.usable() ? "ok" : "FAILED");
@@ -326,15 +325,13 @@ void register_bench(CLI::App& app, int& exit_code) {
     std::filesystem::remove_all(scratch, ec);
     double load[1] = {0.0};
     if (getloadavg(load, 1) != 1) load[0] = -1;
-    std::printf("median over cases of the per-case median time_s: %.4f s, total_s: %.4f s, full_s: %.4f s, cpu_s: "
+    std::fprintf(text, "median over cases of the per-case median time_s: %.4f s, total_s: %.4f s, full_s: %.4f s, cpu_s: "
                 "%.4f s, tot_cpu_s: %.4f s, full_cpu_s: %.4f s (%zu cases, %d runs each, %d threads, load average "
                 "%.2f)\n",
                 median(medians), median(total_medians), median(full_medians), median(cpu_medians),
                 median(total_cpu_medians), median(full_cpu_medians), medians.size(), args->repeat, fit::resolve_threads(options.threads), load[0]);
-    if (!args->json_out.empty()) {
-      std::ofstream f(args->json_out);
-      if (!f) throw IoError(args->json_out, "cannot open for writing");
-      f << nlohmann::json{{"cases", cases}, {"median_time_s", median(medians)},
+    if (args->json) {
+      std::cout << nlohmann::json{{"cases", cases}, {"median_time_s", median(medians)},
                          {"median_total_s", median(total_medians)}, {"median_full_s", median(full_medians)},
                          {"median_cpu_s", median(cpu_medians)}, {"median_total_cpu_s", median(total_cpu_medians)},
                          {"median_full_cpu_s", median(full_cpu_medians)},

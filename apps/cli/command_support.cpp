@@ -28,8 +28,8 @@ void add_fit_flags(CLI::App& sub, FitFlags& f) {
                   t.can_disable ? "; <= 0 disables" : "");
     g->add_option(flag, f.lambdas[std::string(t.name)], help);
   }
-  g->add_option("--max-blendshapes", f.max_blendshapes, "use only the first N blendshapes");
-  g->add_option("--max-landmarks", f.max_landmarks, "use only the first N landmarks (paper order)");
+  g->add_option("--max-blendshapes", f.max_blendshapes, "use only the first N blendshapes (default: all)");
+  g->add_option("--max-landmarks", f.max_landmarks, "use only the first N landmarks (paper order; default: all given)");
   g->add_flag("--no-surface-detail", f.no_surface_detail,
               "the paper's model only: no smooth normal offsets fitted after the parameters");
   sub.add_option("--threads", f.threads,

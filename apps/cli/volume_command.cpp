@@ -4,7 +4,7 @@
 // ground-truth surface with its contours (docs/TRANSFER.md "Breast measurements"). The surface
 // must be closed inside each curve: a hole there is refused (transfer::curve_volume).
 #include <cstdio>
-#include <fstream>
+#include <iostream>
 #include <string>
 #include <vector>
 
@@ -23,10 +23,10 @@ namespace breastfit::cli {
 
 void register_volume(CLI::App& app, int& exit_code) {
   struct Args {
-    std::string mesh, curves, fill = "membrane", units = "auto", json;
+    std::string mesh, curves, fill = "membrane", units = "auto";
     std::vector<std::string> names;
     double target_edge_mm = 2.0, max_distance_mm = 10.0;
-    bool regions = false, quiet = false, force = false;
+    bool json = false, regions = false, quiet = false;
   };
   auto args = std::make_shared<Args>();
   auto* sub = app.add_subcommand(
@@ -50,12 +50,10 @@ void register_volume(CLI::App& app, int& exit_code) {
   sub->add_option("--max-distance", args->max_distance_mm,
                   "reject a curve farther than this from the surface on average, mm")
       ->check(CLI::PositiveNumber);
-  sub->add_option("--json", args->json, "also write the results as JSON");
-  sub->add_flag("--force", args->force, "replace an existing --json file");
+  sub->add_flag("--json", args->json, "print the results as JSON instead of the table (as every --json: redirect it to keep it)");
   sub->add_flag("--regions", args->regions, "with --json: include each curve's region (mesh vertex indices)");
-  sub->add_flag("--quiet,-q", args->quiet, "no table on stdout");
+  sub->add_flag("--quiet,-q", args->quiet, "no table on stdout (the JSON of --json is printed all the same)");
   sub->callback([args, &exit_code] {
-    if (!args->json.empty()) check_output_file(args->json, {args->mesh, args->curves}, args->force);  // before any work
     TriangleMesh mesh = io::read_mesh(args->mesh);
     if (mesh.is_point_cloud()) throw InvalidInput(args->mesh + ": a point cloud; volume needs a triangle mesh");
     mesh::Units units;
@@ -108,13 +106,13 @@ void register_volume(CLI::App& app, int& exit_code) {
       if (args->regions) j["region"] = v.region;
       results.push_back(std::move(j));
     }
-    if (!args->quiet) {  // after every curve was measured: an error leaves no partial table
+    if (!args->quiet && !args->json) {  // after every curve was measured: an error leaves no partial table
       std::printf("%-24s %10s %16s\n", "curve", "volume_ml", "region_vertices");
       for (const auto& j : results)
         std::printf("%-24s %10.1f %16zu\n", j["name"].get<std::string>().c_str(), j["volume_ml"].get<double>(),
                     j["region_vertices"].get<size_t>());
     }
-    if (!args->json.empty()) {
+    if (args->json) {
       const nlohmann::json doc = {
           {"mesh", args->mesh},
           {"curves_file", args->curves},
@@ -125,10 +123,7 @@ void register_volume(CLI::App& app, int& exit_code) {
            "surface inside each closed curve (topological cut along the curve snapped to the mesh) against a "
            "chest-wall fill of that region; the surface around the curve refined to target_edge_mm first"},
           {"curves", results}};
-      std::ofstream f(args->json);
-      if (!f) throw IoError(args->json, "cannot open for writing");
-      f << doc.dump(1) << "\n";
-      if (!f) throw IoError(args->json, "write failed");
+      std::cout << doc.dump(1) << "\n";
     }
     (void)exit_code;
   });

@@ -1,11 +1,10 @@
 // `breastfit bench` on a synthetic case made by `breastfit synth`: the table has the solver time
-// and the whole run's time per case, their CPU times and their medians; --json writes every run;
+// and the whole run's time per case, their CPU times and their medians; --json prints every run (the table on stderr);
 // the thread count and the load are reported and the threads do not change the fit; --refit
 // moves a landmark by --refit-mm.
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <fstream>
 #include <regex>
 
 #include <nlohmann/json.hpp>
@@ -26,10 +25,9 @@ TEST(BenchCommand, PrintsSolverAndWholeRunTimesPerCaseAndTheirMedians) {
   ASSERT_EQ(test::run_cli("synth --quiet --seed 4 --out '" + (cases / "c4").string() + "'", &out), 0) << out;
   nlohmann::json runs[2];
   for (int threads : {1, 2}) {
-    const fs::path json = tmp / ("bench" + std::to_string(threads) + ".json");
-    ASSERT_EQ(test::run_cli("bench '" + cases.string() + "' -n 2 --threads " + std::to_string(threads) +
-                                " --json '" + json.string() + "'",
-                            &out),
+    std::string json;  // --json: the numbers on stdout, the table on stderr
+    ASSERT_EQ(test::run_cli_split("bench '" + cases.string() + "' -n 2 --threads " + std::to_string(threads) + " --json",
+                                  &json, &out),
               0)
         << out;
     EXPECT_TRUE(std::regex_search(out, std::regex(R"(case\s+time_s\s+total_s\s+full_s\s+cpu_s\s+tot_cpu_s\s+full_cpu_s\s+iters)")))
@@ -40,8 +38,7 @@ TEST(BenchCommand, PrintsSolverAndWholeRunTimesPerCaseAndTheirMedians) {
     EXPECT_NE(out.find("(1 cases, 2 runs each, " + std::to_string(threads) + " threads, load average "),
               std::string::npos)
         << out;
-    std::ifstream f(json);
-    runs[threads - 1] = nlohmann::json::parse(f);
+    runs[threads - 1] = nlohmann::json::parse(json);
     const auto& c = runs[threads - 1]["cases"][0];
     ASSERT_EQ(c["time_s_all"].size(), 2u);
     ASSERT_EQ(c["total_s_all"].size(), 2u);
@@ -73,13 +70,12 @@ TEST(BenchCommand, TimesTheWorkstationsSuggest) {
   const fs::path cases = tmp / "cases";
   std::string out;
   ASSERT_EQ(test::run_cli("synth --quiet --seed 6 --out '" + (cases / "c6").string() + "'", &out), 0) << out;
-  const fs::path json = tmp / "suggest.json";
-  ASSERT_EQ(test::run_cli("bench '" + cases.string() + "' --suggest -n 2 --json '" + json.string() + "'", &out), 0) << out;
+  std::string json;
+  ASSERT_EQ(test::run_cli_split("bench '" + cases.string() + "' --suggest -n 2 --json", &json, &out), 0) << out;
   EXPECT_TRUE(std::regex_search(out, std::regex(R"(case\s+suggest_ms_med\s+suggest_ms_max\s+cpu_ms_med)"))) << out;
   EXPECT_TRUE(std::regex_search(out, std::regex(R"(c6\s+[\d.]+\s+[\d.]+\s+[\d.]+\s+ok)"))) << out;
   EXPECT_NE(out.find("suggest, median of all 2:"), std::string::npos) << out;
-  std::ifstream f(json);
-  const auto j = nlohmann::json::parse(f);
+  const auto j = nlohmann::json::parse(json);
   ASSERT_EQ(j["cases"][0]["suggest_ms_all"].size(), 2u);
   EXPECT_GT(j["median_suggest_ms"].get<double>(), 0.0);
   EXPECT_NE(test::run_cli("bench '" + cases.string() + "' --suggest --refit", &out), 0) << out;
@@ -114,15 +110,11 @@ TEST(BenchCommand, RefitMovesALandmarkByTheAskedDistance) {
   const fs::path cases = tmp / "cases";
   std::string out;
   ASSERT_EQ(test::run_cli("synth --quiet --seed 5 --out '" + (cases / "c5").string() + "'", &out), 0) << out;
-  const fs::path json = tmp / "refit.json";
-  ASSERT_EQ(test::run_cli("bench '" + cases.string() + "' --refit --refit-mm 6 -n 2 --threads 1 --json '" +
-                              json.string() + "'",
-                          &out),
-            0)
+  std::string json;
+  ASSERT_EQ(test::run_cli_split("bench '" + cases.string() + "' --refit --refit-mm 6 -n 2 --threads 1 --json", &json, &out), 0)
       << out;
   EXPECT_NE(out.find("re-fit after a 6.0 mm move, median of all 2:"), std::string::npos) << out;
-  std::ifstream f(json);
-  const auto j = nlohmann::json::parse(f);
+  const auto j = nlohmann::json::parse(json);
   EXPECT_EQ(j["move_mm"], 6.0);
   EXPECT_EQ(j["cases"][0]["refit_ms_all"].size(), 2u);
   EXPECT_EQ(j["cases"][0]["usable"], true);

@@ -8,6 +8,7 @@
 
 #include "breastfit/io/io.h"
 #include "breastfit/io/markups.h"
+#include "support/read_json.h"
 #include "support/test_paths.h"
 
 namespace breastfit {
@@ -41,17 +42,6 @@ TriangleMesh holey_grid(int n, double h) {
   return g;
 }
 
-json run_json(const std::string& args) {
-  std::string out;
-  const int rc = test::run_cli(args, &out);
-  EXPECT_EQ(rc, 0) << out;
-  try {
-    return json::parse(out);
-  } catch (const json::parse_error& e) {
-    ADD_FAILURE() << "not JSON: " << e.what() << "\n" << out;
-    return json();
-  }
-}
 
 TEST(InspectCommand, MeshTextAndJson) {
   ASSERT_FALSE(test::cli_path().empty());
@@ -63,7 +53,7 @@ TEST(InspectCommand, MeshTextAndJson) {
   EXPECT_NE(out.find("components: 2"), std::string::npos) << out;
   EXPECT_NE(out.find("units: mm"), std::string::npos) << out;
 
-  const json j = run_json("inspect --json '" + p.string() + "'");
+  const json j = test::run_cli_json("inspect --json '" + p.string() + "'");
   EXPECT_EQ(j["kind"], "mesh");
   EXPECT_EQ(j["num_vertices"], 28);
   EXPECT_EQ(j["num_faces"], 31);
@@ -85,16 +75,16 @@ TEST(InspectCommand, MeshTextAndJson) {
 TEST(InspectCommand, MetreMeshAndForcedUnits) {
   const fs::path p = test::temp_dir() / "grid_m.obj";
   io::write_mesh(p, holey_grid(4, 0.1));  // 0.4 m across, 1 m tall
-  json j = run_json("inspect --json '" + p.string() + "'");
+  json j = test::run_cli_json("inspect --json '" + p.string() + "'");
   EXPECT_EQ(j["units"], "m");
   EXPECT_NEAR(j["max_extent_mm"].get<double>(), 1000.0, 1e-3);
-  j = run_json("inspect --json --units mm '" + p.string() + "'");
+  j = test::run_cli_json("inspect --json --units mm '" + p.string() + "'");
   EXPECT_EQ(j["units"], "mm");
   EXPECT_EQ(j["units_source"], "given");
   // Ambiguous extent (20 units): no guess, the reason is reported, still exit 0.
   const fs::path q = test::temp_dir() / "small.ply";
   io::write_mesh(q, holey_grid(2, 2.0));
-  j = run_json("inspect --json '" + q.string() + "'");
+  j = test::run_cli_json("inspect --json '" + q.string() + "'");
   EXPECT_TRUE(j["units"].is_null());
   EXPECT_NE(j["units_problem"].get<std::string>().find("pass --units"), std::string::npos);
 }
@@ -105,7 +95,7 @@ TEST(InspectCommand, PointCloud) {
   cloud.V << 0, 0, 0, 300, 0, 0, 0, 200, 0, 0, 0, 100;
   const fs::path p = test::temp_dir() / "cloud.ply";
   io::write_mesh(p, cloud);
-  const json j = run_json("inspect --json '" + p.string() + "'");
+  const json j = test::run_cli_json("inspect --json '" + p.string() + "'");
   EXPECT_EQ(j["kind"], "point_cloud");
   EXPECT_EQ(j["num_vertices"], 4);
   EXPECT_EQ(j["num_faces"], 0);
@@ -127,7 +117,7 @@ TEST(InspectCommand, MarkupsWithPointsAndCurves) {
   m.curves.push_back(c);
   const fs::path p = test::temp_dir() / "drawings.mrk.json";
   io::write_markups(p, m, {.units = "m"});
-  const json j = run_json("inspect --json '" + p.string() + "'");
+  const json j = test::run_cli_json("inspect --json '" + p.string() + "'");
   EXPECT_EQ(j["kind"], "markups");
   EXPECT_EQ(j["declared_units"], "m");
   EXPECT_EQ(j["units"], "mm");
@@ -148,7 +138,7 @@ TEST(InspectCommand, MarkupsWithPointsAndCurves) {
   // The same content under a plain .json name is still recognised as markups (curves kept).
   const fs::path q = p.parent_path() / "drawings.json";  // (temp_dir() would empty the directory)
   fs::copy_file(p, q);
-  const json k = run_json("inspect --json '" + q.string() + "'");
+  const json k = test::run_cli_json("inspect --json '" + q.string() + "'");
   EXPECT_EQ(k["kind"], "markups");
   EXPECT_EQ(k["curves"].size(), 1u);
 }
@@ -173,12 +163,12 @@ TEST(InspectCommand, SkippedMarkupTypesAndUnplacedPointsAreWarnedAbout) {
 TEST(InspectCommand, CsvLandmarksWithUnits) {
   const fs::path p = test::temp_dir() / "lm.csv";
   std::ofstream(p) << "name,x,y,z\nxiphoid,0.1,0.2,0.3\nnipple_R,0.4,0.5,0.6\n";
-  json j = run_json("inspect --json '" + p.string() + "'");
+  json j = test::run_cli_json("inspect --json '" + p.string() + "'");
   EXPECT_EQ(j["kind"], "landmarks");
   EXPECT_TRUE(j["declared_units"].is_null());
   EXPECT_EQ(j["units"], "file units");
   EXPECT_NEAR(j["points"][1]["position"][0].get<double>(), 0.4, 1e-12);
-  j = run_json("inspect --json --units m '" + p.string() + "'");
+  j = test::run_cli_json("inspect --json --units m '" + p.string() + "'");
   EXPECT_EQ(j["units"], "mm");
   EXPECT_NEAR(j["points"][1]["position"][0].get<double>(), 400.0, 1e-9);
 }

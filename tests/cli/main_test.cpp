@@ -18,6 +18,7 @@ namespace {
 /// One option or positional line of a CLI11 help text: its names and description.
 struct HelpOption {
   std::vector<std::string> names;  // "-o", "--out", or a positional's name
+  std::string head;                // names, type and default: "--seed UINT=7"
   std::string description;
 };
 
@@ -33,8 +34,10 @@ std::string trim(const std::string& s) {
   return b == std::string::npos ? "" : s.substr(b, e - b + 1);
 }
 
-/// Splits an entry line (without its indentation) into its head (names and type) and the
-/// description after the first run of two or more spaces (empty when on the next line).
+/// Splits an entry line (without its indentation) into its head (names, type and default) and
+/// the description after the first run of two or more spaces (empty when on the next line).
+/// (CLI11 pads heads to a fixed column: a head one character short of it is followed by one
+/// space and no description is found, which EveryHelpExitsZeroAndDescribesEveryOption reports.)
 std::pair<std::string, std::string> split_entry(const std::string& body) {
   const auto gap = body.find("  ");
   return {body.substr(0, gap), gap == std::string::npos ? "" : trim(body.substr(gap))};
@@ -67,6 +70,7 @@ Help parse_help(const std::string& text) {
     } else if ((section == "Options" && t[0] == '-') || (section == "Positionals" && indent == 2)) {
       const auto [head, description] = split_entry(t);
       HelpOption o;
+      o.head = head;
       std::stringstream ns(head.substr(0, head.find(' ')));
       for (std::string n; std::getline(ns, n, ',');) o.names.push_back(n);
       o.description = description;
@@ -107,6 +111,42 @@ TEST(Main, EveryHelpExitsZeroAndDescribesEveryOption) {
     for (const HelpOption& o : help.options) {
       EXPECT_FALSE(o.description.empty()) << "'" << path << "': option " << o.names.front() << " has no description";
     }
+  }
+}
+
+// Every option taking a number (INT, UINT, FLOAT) or one of a set of words ("TEXT:{mm,m}")
+// says what it is when not given: its default in the head ("--seed UINT=7", captured from the
+// variable) or in its description ("(default 0.25)", "(default: all)"). Required options have
+// none. File options (plain TEXT) may have no default: an absent file is no file.
+TEST(Main, EveryNumberOrChoiceOptionShowsItsDefault) {
+  if (test::cli_path().empty()) GTEST_SKIP() << "CLI not built";
+  const auto helps = walk("");
+  int checked = 0;
+  for (const auto& [path, help] : helps) {
+    for (const HelpOption& o : help.options) {
+      if (o.names.front().rfind("-", 0) != 0) continue;  // a positional
+      const std::string& h = o.head;
+      const bool numeric = h.find(" INT") != std::string::npos || h.find(" UINT") != std::string::npos ||
+                           h.find(" FLOAT") != std::string::npos;
+      const bool choice = h.find(":{") != std::string::npos;
+      if (!(numeric || choice) || h.find("REQUIRED") != std::string::npos) continue;
+      ++checked;
+      const bool shown = h.find('=') != std::string::npos || o.description.find("default") != std::string::npos;
+      EXPECT_TRUE(shown) << "'" << path << "': " << h << " shows no default (" << o.description << ")";
+      EXPECT_EQ(h.find("=[]"), std::string::npos) << "'" << path << "': " << h;
+    }
+  }
+  EXPECT_GE(checked, 30);  // λ weights, --units, bench -n, demo --seed, volume --fill, ...
+  // The ones users asked for by name.
+  const std::vector<std::pair<std::string, std::string>> named{
+      {"bench", "-n,--repeat INT:INT in [1 - 100]=5"}, {"demo", "--seed UINT=7"},
+      {"volume", "--fill TEXT:{membrane,thin-plate}=membrane"}, {"map", "--max-distance FLOAT:POSITIVE=10"},
+      {"register", "--units TEXT:{auto,mm,m}=auto"}};
+  for (const auto& [path, head] : named) {
+    ASSERT_TRUE(helps.count(path)) << path;
+    bool found = false;
+    for (const HelpOption& o : helps.at(path).options) found = found || o.head == head;
+    EXPECT_TRUE(found) << "'" << path << "' has no option shown as " << head;
   }
 }
 

@@ -53,7 +53,7 @@ Markups cap_markups() {
   return m;
 }
 
-using test::read_json;
+using test::run_cli_json;
 
 TEST(VolumeCommand, MeasuresClosedCurvesInAnyUnits) {
   if (test::cli_path().empty()) GTEST_SKIP() << "CLI not built";
@@ -62,15 +62,12 @@ TEST(VolumeCommand, MeasuresClosedCurvesInAnyUnits) {
   io::write_markups(dir / "curves.mrk.json", cap_markups());
 
   std::string out;
-  ASSERT_EQ(test::run_cli("volume " + (dir / "cap.ply").string() + " --curves " + (dir / "curves.mrk.json").string() +
-                              " --json " + (dir / "v.json").string() + " --regions",
-                          &out),
-            0)
-      << out;
+  const std::string on_cap = "volume " + (dir / "cap.ply").string() + " --curves " + (dir / "curves.mrk.json").string();
+  ASSERT_EQ(test::run_cli(on_cap, &out), 0) << out;  // the table
   EXPECT_NE(out.find("volume_ml"), std::string::npos) << out;
   EXPECT_NE(out.find("cap"), std::string::npos) << out;
   EXPECT_EQ(out.find("line"), std::string::npos) << out;  // open curves are not measured
-  const nlohmann::json j = read_json(dir / "v.json");
+  const nlohmann::json j = run_cli_json(on_cap + " --json --regions");
   ASSERT_EQ(j["curves"].size(), 2u);
   EXPECT_EQ(j["curves"][0]["name"], "cap");
   const double v_mm = j["curves"][0]["volume_ml"].get<double>();
@@ -91,17 +88,13 @@ TEST(VolumeCommand, MeasuresClosedCurvesInAnyUnits) {
   io::write_mesh(dir / "cap_m.ply", in_m);
   io::write_markups(dir / "curves_m.mrk.json", cap_markups(), {.units = "m"});
   const std::string in_metres = "volume " + (dir / "cap_m.ply").string() + " -c " + (dir / "curves_m.mrk.json").string();
-  ASSERT_EQ(test::run_cli(in_metres + " --name cap --json " + (dir / "vm.json").string(), &out), 0) << out;
-  const nlohmann::json jm = read_json(dir / "vm.json");
+  const nlohmann::json jm = run_cli_json(in_metres + " --name cap --json");
   ASSERT_EQ(jm["curves"].size(), 1u);
   EXPECT_EQ(jm["mesh_units"], "m");
   EXPECT_NEAR(jm["curves"][0]["volume_ml"].get<double>(), v_mm, 1e-3 * v_mm);
   // thin plate on the mesh as given: it continues the skin's slope around the circle (rising
   // inwards), so it cuts off part of the bump
-  ASSERT_EQ(test::run_cli(in_metres + " --name cap --fill thin-plate --target-edge 0 --json " + (dir / "vt.json").string(), &out),
-            0)
-      << out;
-  const nlohmann::json jt = read_json(dir / "vt.json");
+  const nlohmann::json jt = run_cli_json(in_metres + " --name cap --fill thin-plate --target-edge 0 --json");
   EXPECT_EQ(jt["chest_wall"], "thin_plate");
   EXPECT_EQ(jt["curves"][0]["refinement_levels"], 0);
   EXPECT_GT(jt["curves"][0]["volume_ml"].get<double>(), 0.3 * v_mm);
@@ -150,18 +143,10 @@ TEST(VolumeCommand, BadInputIsOneLineWithItsExitCode) {
   io::write_mesh(dir / "cloud.ply", cloud);
   EXPECT_EQ(test::run_cli("volume " + (dir / "cloud.ply").string() + " --curves " + curves, &out), 3) << out;
   EXPECT_NE(out.find("point cloud"), std::string::npos) << out;
-  // --json never replaces an input, nor an existing file without --force: exit 4, files intact
+  // --json prints (as everywhere) and writes nothing: a path after it is not an option value
   const auto size_before = fs::file_size(dir / "curves.mrk.json");
-  EXPECT_EQ(test::run_cli("volume " + mesh + " --curves " + curves + " --json " + curves, &out), 4) << out;
-  EXPECT_NE(out.find("is an input"), std::string::npos) << out;
+  EXPECT_EQ(test::run_cli("volume " + mesh + " --curves " + curves + " --json " + curves, &out), 2) << out;
   EXPECT_EQ(fs::file_size(dir / "curves.mrk.json"), size_before);
-  { std::ofstream(dir / "old.json") << "keep"; }
-  const std::string old_json = (dir / "old.json").string();
-  EXPECT_EQ(test::run_cli("volume " + mesh + " --curves " + curves + " --json " + old_json, &out), 4) << out;
-  EXPECT_NE(out.find("--force"), std::string::npos) << out;
-  EXPECT_EQ(fs::file_size(dir / "old.json"), 4u);
-  EXPECT_EQ(test::run_cli("volume " + mesh + " --curves " + curves + " --json " + old_json + " --force", &out), 0) << out;
-  EXPECT_GT(fs::file_size(dir / "old.json"), 4u);
   // command line: exit 2
   EXPECT_EQ(test::run_cli("volume " + mesh + " --curves " + curves + " --fill sphere", &out), 2) << out;
   EXPECT_EQ(test::run_cli("volume " + mesh, &out), 2) << out;

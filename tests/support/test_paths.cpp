@@ -55,8 +55,10 @@ std::filesystem::path temp_dir() {
   return dir;
 }
 
-int run_cli(const std::string& args, std::string* output) {
-  const std::string cmd = "'" + cli_path().string() + "' " + args + " 2>&1";
+namespace {
+
+/// Runs `cmd` through /bin/sh, captures its stdout into `output`; returns the exit code.
+int run_shell(const std::string& cmd, std::string* output) {
   FILE* pipe = ::popen(cmd.c_str(), "r");
   if (!pipe) return -1;
   std::array<char, 4096> buf{};
@@ -66,6 +68,23 @@ int run_cli(const std::string& args, std::string* output) {
   const int status = ::pclose(pipe);
   if (output) *output = out;
   return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+}  // namespace
+
+int run_cli(const std::string& args, std::string* output) {
+  return run_shell("'" + cli_path().string() + "' " + args + " 2>&1", output);
+}
+
+int run_cli_split(const std::string& args, std::string* stdout_text, std::string* stderr_text) {
+  static int calls = 0;  // a file of its own per call (temp_dir() would empty the test's directory)
+  const std::filesystem::path err = std::filesystem::temp_directory_path() /
+                                    ("breastfit_stderr_" + std::to_string(::getpid()) + "_" + std::to_string(++calls) + ".txt");
+  const int rc = run_shell("'" + cli_path().string() + "' " + args + " 2>'" + err.string() + "'", stdout_text);
+  if (stderr_text) *stderr_text = file_bytes(err);
+  std::error_code ec;
+  std::filesystem::remove(err, ec);
+  return rc;
 }
 
 std::string file_bytes(const std::filesystem::path& path) {

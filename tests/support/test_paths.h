@@ -22,4 +22,7 @@ std::string file_bytes(const std::filesystem::path& path);
 /// captures stdout+stderr into `output`.
 int run_cli(const std::string& args, std::string* output = nullptr);
 
+/// run_cli with stdout and stderr apart (e.g. `--json` output that a warning must not break).
+int run_cli_split(const std::string& args, std::string* stdout_text, std::string* stderr_text = nullptr);
+
 }  // namespace breastfit::test
