@@ -78,6 +78,38 @@ TEST(BilateralCheck, OneWrongLandmarkDoesNotTiltTheMidline) {
     EXPECT_FALSE(check.flagged()) << check.right << ": " << check.distance_mm << " mm";
 }
 
+// The combined check also weighs the member not blamed, but only while the pair is within its
+// tolerance: beyond it the blamed one is flagged and its partner left alone.
+TEST(BilateralCheck, TheMemberNotBlamedIsLeftToTheCombinedCheckWithinTheTolerance) {
+  BilateralCheck within;
+  within.right = "lowest_breast_R";
+  within.left = "lowest_breast_L";
+  within.blamed = "lowest_breast_L";
+  within.distance_mm = 9.0;
+  within.tolerance_mm = 10.0;
+  ASSERT_TRUE(unblamed_member(within).has_value());
+  EXPECT_EQ(*unblamed_member(within), "lowest_breast_R");
+  within.blamed = "lowest_breast_R";
+  EXPECT_EQ(*unblamed_member(within), "lowest_breast_L");
+  BilateralCheck beyond = within;
+  beyond.distance_mm = 11.0;
+  EXPECT_FALSE(unblamed_member(beyond).has_value());
+  // On a torso: a lowest breast point moved 8 mm up leaves the pair within, both members weighed.
+  const synth::SynthCase& c = synth_case(synth::PoseType::Standing);
+  const Frame f = body_frame(c);
+  auto landmarks = truth_targets(c);
+  move(landmarks, "lowest_breast_R", 8.0 * f.up);
+  bool seen = false;
+  for (const auto& check : check_bilateral_pairs(landmarks, 15.0))
+    if (check.right == "lowest_breast_R") {
+      seen = true;
+      EXPECT_FALSE(check.flagged()) << check.distance_mm << " mm";
+      ASSERT_TRUE(unblamed_member(check).has_value());
+      EXPECT_NE(*unblamed_member(check), check.blamed);
+    }
+  EXPECT_TRUE(seen);
+}
+
 TEST(BilateralCheck, NeedsTheSternumAndTwoOtherPairs) {
   const synth::SynthCase& c = synth_case(synth::PoseType::Standing);
   auto landmarks = truth_targets(c);

@@ -79,6 +79,11 @@ std::optional<Vec3> bilateral_tolerance_mm(const std::string& prefix, double lan
   return std::nullopt;
 }
 
+std::optional<std::string> unblamed_member(const BilateralCheck& check) {
+  if (check.flagged()) return std::nullopt;
+  return check.blamed == check.right ? check.left : check.right;
+}
+
 std::vector<BilateralCheck> check_bilateral_pairs(const std::vector<LandmarkTarget>& landmarks,
                                                   double landmark_check_mm) {
   std::vector<BilateralCheck> out;

@@ -57,6 +57,16 @@ std::optional<Vec3> typical_proportions(const std::string& prefix);
 /// for a pair not checked this way.
 std::optional<Vec3> bilateral_tolerance_mm(const std::string& prefix, double landmark_check_mm);
 
+/// The member of the pair that its check leaves to the combined check (combined_check.h) besides the
+/// blamed one: the other member when the pair is within its tolerance, else none. Within the
+/// tolerance nobody is flagged and the blame by proportions is a guess — a landmark walked 20 mm
+/// towards the typical proportions gets its partner blamed (4 of the 9 lowest breast points missed
+/// on the benchmark cases in session 15, docs/REGISTRATION.md, "Session 16") —, so the combined
+/// check weighs the asymmetry with each member's own prediction; beyond it the blamed one is flagged
+/// and the other is left alone (giving it the asymmetry too flagged the partner of nearly every
+/// walk beyond the tolerance: 275 of 504 walks with another landmark flagged, against 81).
+std::optional<std::string> unblamed_member(const BilateralCheck& check);
+
 /// Every checked pair (acromia, mid-axillary points, lowest breast points)
 /// given on both sides, when the sternal notch, the xiphoid and at least two other pairs are given;
 /// of those beyond their tolerance only the farthest (relative to its tolerance).

@@ -12,6 +12,12 @@
 /// notch 0.90 (as given at most 0.55 bench, 0.82 synthetic), acromia 0.80 (0.67), mid-axillary
 /// points 1.0 (0.84), pectoral insertions 1.0 (0.90), nipples 0.85 (0.61 bench, 0.74 synthetic),
 /// lowest breast points 0.95 (0.85). The xiphoid has no anatomical check of this kind.
+///
+/// Session 16: a bilateral pair within its tolerance also gives its asymmetry to the member it does
+/// not blame (bilateral_check.h unblamed_member), with the same thresholds — as given that member's
+/// r_p² + r_a² reaches 0.87 (lowest breast points), 0.76 (acromia) and 0.72 (mid-axillary points)
+/// on the benchmark and validation cases —; and the pectoral insertion's arm check, tightened along
+/// the sternum (pectoral_check.h), reaches 0.93 as given.
 #include <optional>
 #include <string>
 

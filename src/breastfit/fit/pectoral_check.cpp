@@ -7,7 +7,9 @@ namespace {
 // sternum, front and towards the side; the tolerances at landmark_check_mm = 15.
 const Vec3 kOffset(-76.2, 31.4, 7.1);
 const Vec3 kPerArmUp(42.0, 4.5, 8.7), kPerArmFront(68.0, 37.1, -2.3), kPerArmSide(9.8, 1.1, 62.0);
-const Vec3 kTolerance(24.0, 14.0, 22.0);
+// Along the sternum 16 mm, not 24 (session 16, docs/REGISTRATION.md): the bench's largest residual
+// there (9.6 mm) with the sideways axis' margin (22 / 13.4 = 1.64×).
+const Vec3 kTolerance(16.0, 14.0, 22.0);
 
 }  // namespace
 

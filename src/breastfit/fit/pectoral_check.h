@@ -16,10 +16,15 @@
 /// another definition). A fixed offset per pose instead (arms hanging or on boards) was as tight
 /// on the benchmark cases but 32 mm off on a synthetic torso whose arms are abducted further.
 ///
-/// The deviation from the arm's offset is measured in an ellipsoid of per-axis tolerances, about
-/// 1.3× the largest residuals — 24 / 14 / 22 mm —, so a walk is caught in whatever direction it
-/// goes on the skin (a box per axis misses the diagonal walks). The caller skips the check when the
-/// acromion, the reference, is itself suspect.
+/// The deviation from the arm's offset is measured in an ellipsoid of per-axis tolerances, so a walk
+/// is caught in whatever direction it goes on the skin (a box per axis misses the diagonal walks):
+/// 16 / 14 / 22 mm. Front and sideways about 1.3–1.6× the largest residuals; along the sternum first
+/// 24 mm (the synthetic torsos' 18.3), then 16 (session 16, docs/REGISTRATION.md): the template-made
+/// insertion is another definition, the bench's largest residual there is 9.6 mm and 1.64× it (the
+/// sideways axis' margin, 22 / 13.4) is 16 — the radius was the loosest exactly where the 20 mm walks
+/// the fitted arm did not follow went (up and down the arm's front). The synthetic torsos' truth
+/// stays within (tests/fit/pectoral_check_test.cpp). The caller skips the check when the acromion,
+/// the reference, is itself suspect.
 #include "breastfit/core/types.h"
 #include "breastfit/fit/shoulder_landmarks.h"
 

@@ -500,17 +500,26 @@ void relinearize_suspects(Problem& problem, const model::PoseParams& params, con
 }
 
 // Each bilateral pair against its mirror image (bilateral_check.h), the check kept by the member
-// it blames.
+// it blames; the same asymmetry in `unblamed` for the member the pair's check leaves to the
+// combined check only (bilateral_check.h unblamed_member: the other one of a pair within its
+// tolerance; check_agreement, session 16).
 void check_pairs(const std::vector<LandmarkTarget>& given, const FitOptions& options,
-                 std::vector<std::optional<AnatomyCheck>>& out) {
-  for (const BilateralCheck& c : check_bilateral_pairs(given, options.landmark_check_mm)) {
-    const size_t i = static_cast<size_t>(
-        std::find_if(given.begin(), given.end(), [&](const LandmarkTarget& t) { return t.name == c.blamed; }) -
+                 std::vector<std::optional<AnatomyCheck>>& out, std::vector<std::optional<AnatomyCheck>>& unblamed) {
+  const auto index_of = [&](const std::string& name) {
+    return static_cast<size_t>(
+        std::find_if(given.begin(), given.end(), [&](const LandmarkTarget& t) { return t.name == name; }) -
         given.begin());
+  };
+  for (const BilateralCheck& c : check_bilateral_pairs(given, options.landmark_check_mm)) {
     const std::string& partner = c.blamed == c.right ? c.left : c.right;
+    const size_t i = index_of(c.blamed);
     if (i < out.size() && !out[i])
       out[i] = AnatomyCheck{c.distance_mm, c.tolerance_mm,
                             "the mirror image of '" + partner + "' across the other landmarks' midline, off " + c.axis};
+    if (const auto other = unblamed_member(c); other && index_of(*other) < unblamed.size())
+      unblamed[index_of(*other)] = AnatomyCheck{
+          c.distance_mm, c.tolerance_mm,
+          "the mirror image of '" + c.blamed + "' across the other landmarks' midline, off " + c.axis};
   }
 }
 
@@ -568,11 +577,16 @@ void keep_if_worse(std::optional<AnatomyCheck>& slot, AnatomyCheck c) {
 // against the lowest breast points' height (xiphoid_check.h). Each takes a landmark's anatomical
 // check when it flags it and is farther beyond than the one there; `out` holds the earlier checks,
 // `scan_N` the scan's outward normals when already computed (else empty; computed here if needed).
+// A pair's member not blamed by its check (`unblamed`, check_pairs) enters the combined check with
+// the pair's asymmetry when it has no check of its own (session 16).
 void check_agreement(const model::RiggedModel& model, const Points& V, const model::PoseParams& params,
                      const ScanTarget& scan, const std::optional<BodyAxes>& axes,
                      const std::vector<LandmarkTarget>& given, const std::vector<Vec3>& predicted,
-                     const FitOptions& options, Points& scan_N, std::vector<std::optional<AnatomyCheck>>& out) {
-  const std::vector<std::optional<AnatomyCheck>> before = out;
+                     const FitOptions& options, Points& scan_N, std::vector<std::optional<AnatomyCheck>>& out,
+                     const std::vector<std::optional<AnatomyCheck>>& unblamed) {
+  std::vector<std::optional<AnatomyCheck>> before = out;
+  for (size_t i = 0; i < before.size() && i < unblamed.size(); ++i)
+    if (!before[i]) before[i] = unblamed[i];
   for (size_t i = 0; i < given.size() && i < predicted.size(); ++i) {
     if (!before[i]) continue;
     const double ratio = (predicted[i] - given[i].position).norm() /
@@ -656,9 +670,10 @@ std::vector<std::optional<AnatomyCheck>> check_anatomy(const model::RiggedModel&
         out[i] = AnatomyCheck{notch->distance_mm, notch->tolerance_mm, "the jugular notch on the scan's midline"};
     }
   }
-  check_pairs(given, options, out);
+  std::vector<std::optional<AnatomyCheck>> unblamed(given.size());
+  check_pairs(given, options, out, unblamed);
   check_insertions(model, V, params, given, predicted, options, out);
-  check_agreement(model, V, params, scan, axes, given, predicted, options, scan_N, out);
+  check_agreement(model, V, params, scan, axes, given, predicted, options, scan_N, out, unblamed);
   check_nipple_bumps(model, V, params, scan, given, predicted, options, scan_N, out);
   return out;
 }
