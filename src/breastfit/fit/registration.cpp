@@ -371,14 +371,13 @@ bool is_shoulder_landmark(const std::string& name) {
          name.rfind("pectoral_insertion_", 0) == 0;
 }
 
-// Arms hanging (the orientation search and the scan agree, as in shoulder_targets), with a subset
-// of the landmarks given: the mid-axillary points not in `held` on the scan's chest wall in front
-// of the fitted points (hanging_midaxillary.h), the acromia not in `held` at the fitted points moved
-// up and towards the midline (hanging_acromion.h).
-std::vector<LandmarkTarget> hanging_midaxillary_targets(const model::RiggedModel& model, const Points& V,
-                                                        const model::PoseParams& params, const ScanTarget& scan,
-                                                        const std::vector<LandmarkTarget>& held,
-                                                        const std::string& arm_pose) {
+// The arm's landmarks with the arms hanging (the orientation search and the scan agree, as in
+// shoulder_targets) and a subset of the landmarks given: the mid-axillary points not in `held` on
+// the scan's chest wall in front of the fitted points (hanging_midaxillary.h), and the acromia not
+// in `held` at the fitted points moved up and towards the midline (hanging_acromion.h).
+std::vector<LandmarkTarget> hanging_arm_targets(const model::RiggedModel& model, const Points& V,
+                                                const model::PoseParams& params, const ScanTarget& scan,
+                                                const std::vector<LandmarkTarget>& held, const std::string& arm_pose) {
   std::vector<LandmarkTarget> out;
   const auto notch = held_or_posed(model, V, params, held, "sternal_notch");
   const auto xiphoid = held_or_posed(model, V, params, held, "xiphoid");
@@ -425,7 +424,7 @@ std::vector<LandmarkTarget> shoulders_on_refined(const model::RiggedModel& model
   for (size_t i = 0; i < held.size(); ++i)
     if (i < given || !is_shoulder_landmark(held[i].name)) out.push_back(held[i]);
   auto found = shoulder_targets(model, V, params, scan, out, arm_pose);
-  for (auto& t : hanging_midaxillary_targets(model, V, params, scan, out, arm_pose)) found.push_back(t);
+  for (auto& t : hanging_arm_targets(model, V, params, scan, out, arm_pose)) found.push_back(t);
   for (auto& t : found) {
     if (t.name.rfind("midaxillary_", 0) == 0) t.weight = kReplacedMidaxillaryWeight;
     out.push_back(t);
@@ -791,6 +790,9 @@ FitResult register_template(const model::RiggedModel& model, ScanTarget& scan, s
                           !(is_given(landmarks, "lowest_breast_R") && is_given(landmarks, "lowest_breast_L"));
   const bool hold_notch = options.anatomical_notch && !is_given(landmarks, "sternal_notch");
   const bool hold_shoulders = options.anatomical_shoulders && landmarks.size() < model.landmarks.size();
+  // A subset of the landmarks given (3 or more, not all): the xiphoid placed by the nipples, the
+  // folds by proportion with it, and the refine stage run longer with the shoulders placed twice.
+  const bool subset = landmarks.size() >= 3 && hold_shoulders;
   if (hold_nipples || hold_folds || hold_notch || hold_shoulders) {
     const auto coarse_end = stages.end() - 2;  // shape and refine follow
     const std::vector<StageOptions> coarse(stages.begin(), coarse_end);
@@ -817,10 +819,9 @@ FitResult register_template(const model::RiggedModel& model, ScanTarget& scan, s
           problem_ptr->evaluator().set_params(params);
           const Points& shaped = problem_ptr->evaluator().vertices();
           const size_t before = held.size();
-          if (landmarks.size() >= 3 && hold_shoulders) place_xiphoid_by_nipples(model, shaped, params, landmarks, held);
+          if (subset) place_xiphoid_by_nipples(model, shaped, params, landmarks, held);
           if (hold_folds)
-            place_folds_by_proportion(model, shaped, params, scan, landmarks, held,
-                                      landmarks.size() >= 3 && hold_shoulders);
+            place_folds_by_proportion(model, shaped, params, scan, landmarks, held, subset);
           if (hold_shoulders)
             for (auto& t : shoulder_targets(model, shaped, params, scan, held, summary.orientation.arm_pose))
               held.push_back(t);
@@ -829,7 +830,6 @@ FitResult register_template(const model::RiggedModel& model, ScanTarget& scan, s
           problem_ptr = std::make_unique<Problem>(model, scan, options, held);
           // A subset given: the refine stage with twice its iterations, here and once more below (in its
           // 3 iterations the model stayed 2–5 mm short of the targets; docs/REGISTRATION.md, Session 14).
-          const bool subset = landmarks.size() >= 3 && hold_shoulders;
           std::vector<StageOptions> refine(coarse_end + 1, stages.end());
           if (subset)
             for (auto& s : refine) s.max_iterations *= kSubsetRefineIterationFactor;
