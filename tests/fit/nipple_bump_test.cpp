@@ -6,11 +6,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "breastfit/fit/nipple_bump_check.h"
 #include "breastfit/mesh/normals.h"
+#include "breastfit/spatial/closest_point_index.h"
 #include "fit/synth_anatomy.h"
 
 namespace breastfit::fit {
@@ -76,6 +78,51 @@ TEST(NippleBump, RefusesWithoutADistinctSinglePeak) {
   EXPECT_FALSE(nipple_bump_on_scan(spike.V, spike.N, Vec3::Zero()));
   // No scan around the centre.
   EXPECT_FALSE(nipple_bump_on_scan(spike.V, spike.N, Vec3(0, 0, 500)));
+}
+
+// The height field's grid as triangles (two per square), for the index's overload.
+TriangleMesh triangulated(const HeightField& f) {
+  const int n = static_cast<int>(std::lround(std::sqrt(static_cast<double>(f.V.rows()))));
+  TriangleMesh m;
+  m.V = f.V;
+  m.F.resize(2 * (n - 1) * (n - 1), 3);
+  Index k = 0;
+  for (int i = 0; i + 1 < n; ++i)
+    for (int j = 0; j + 1 < n; ++j) {
+      const Index a = i * n + j, b = a + 1, c = a + n, d = c + 1;
+      m.F.row(k++) << a, b, d;
+      m.F.row(k++) << a, d, c;
+    }
+  return m;
+}
+
+void expect_same_bits(const std::optional<NippleBump>& a, const std::optional<NippleBump>& b) {
+  ASSERT_EQ(a.has_value(), b.has_value());
+  if (!a) return;
+  EXPECT_EQ(a->position, b->position);
+  EXPECT_EQ(a->peak_mm, b->peak_mm);
+  EXPECT_EQ(a->median_mm, b->median_mm);
+  EXPECT_EQ(a->second_mm, b->second_mm);
+}
+
+TEST(NippleBump, TheScansIndexGivesTheSameBump) {
+  // The fit measures through its index of the scan (the vertices around the centre without a
+  // pass over all of them): the same bits as over the scan's vertices.
+  const HeightField f = dome({{Vec3(8.0, -9.0, 0), 5.0, 3.0}});
+  const spatial::ClosestPointIndex index(triangulated(f));
+  for (const Vec3& centre : {Vec3(0, 0, 0), Vec3(10, -5, 0), Vec3(-30, 20, -8), Vec3(0, 0, 500)}) {
+    SCOPED_TRACE(centre.transpose());
+    expect_same_bits(measure_nipple_bump(index, f.N, centre), measure_nipple_bump(f.V, f.N, centre));
+    expect_same_bits(nipple_bump_on_scan(index, f.N, centre), nipple_bump_on_scan(f.V, f.N, centre));
+  }
+  ASSERT_TRUE(nipple_bump_on_scan(index, f.N, Vec3::Zero()));
+  const synth::SynthCase& c = synth_case(synth::PoseType::Standing);
+  const spatial::ClosestPointIndex torso(c.scan);
+  const Points N = mesh::vertex_normals(c.scan);
+  for (const char* side : {"R", "L"}) {
+    const Vec3 nipple = truth(c, std::string("nipple_") + side);
+    expect_same_bits(measure_nipple_bump(torso, N, nipple), measure_nipple_bump(c.scan.V, N, nipple));
+  }
 }
 
 TEST(NippleBump, TemplateMadeTorsosHaveNoBump) {

@@ -435,6 +435,62 @@ TEST(ClosestPointIndex, CornersThatAreFloatsGiveTheSameAnswers) {
   expect_same_answers(ClosestPointIndex(big), ClosestPointIndex(big, 2), queries(big, 3000, 3.0, 1.0, 43));
 }
 
+/// The vertices used by a triangle of m within `radius` of q, by index (the brute force of
+/// vertices_within, with the same squared distance).
+std::vector<Index> brute_vertices_within(const TriangleMesh& m, const Vec3& q, double radius) {
+  std::vector<bool> used(static_cast<std::size_t>(m.num_vertices()), false);
+  for (Index f = 0; f < m.num_faces(); ++f)
+    for (int k = 0; k < 3; ++k) used[static_cast<std::size_t>(m.F(f, k))] = true;
+  std::vector<Index> out;
+  for (Index v = 0; v < m.num_vertices(); ++v) {
+    double s = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      const double diff = m.V(v, k) - q[k];
+      s += diff * diff;
+    }
+    if (used[static_cast<std::size_t>(v)] && s <= radius * radius) out.push_back(v);
+  }
+  return out;
+}
+
+TEST(ClosestPointIndex, VerticesWithinARadiusMatchBruteForce) {
+  // Small balls (sorted and deduplicated) and large ones (the bitmap), on a closed sphere, an
+  // open sheet with holes, float corners and a mesh with a vertex no triangle uses.
+  TriangleMesh sheet = meshes::noisy_sheet(40, 2.5, 0.8, 0.15, 4);
+  TriangleMesh rounded = sheet;
+  rounded.V = sheet.V.cast<float>().cast<double>();
+  TriangleMesh stray = meshes::icosphere(3, 50.0);
+  stray.V.conservativeResize(stray.V.rows() + 1, 3);
+  stray.V.row(stray.V.rows() - 1) << 0, 0, 50;  // on the sphere's pole, in no triangle
+  const std::vector<TriangleMesh> ms = {meshes::icosphere(4, 120.0, Vec3(10, -20, 30)), sheet, rounded, stray};
+  for (std::size_t i = 0; i < ms.size(); ++i) {
+    SCOPED_TRACE("mesh " + std::to_string(i));
+    const ClosestPointIndex index(ms[i]);
+    const std::vector<Vec3> qs = queries(ms[i], 200, 5.0, 1.0, 50 + i);
+    std::vector<Index> got;
+    int nonempty = 0;
+    for (std::size_t j = 0; j < qs.size(); ++j)
+      for (const double r : {0.0, 2.0, 7.5, 40.0, 1e4}) {
+        index.vertices_within(qs[j], r, got);
+        ASSERT_EQ(got, brute_vertices_within(ms[i], qs[j], r)) << "query " << j << ", radius " << r;
+        nonempty += !got.empty();
+      }
+    EXPECT_GT(nonempty, 400);  // not all empty (the radius 0 and far queries are)
+  }
+  // Inclusive: a vertex exactly at the radius is in, and a query on a vertex finds it at 0.
+  const TriangleMesh& sphere = ms[0];
+  const ClosestPointIndex index(sphere);
+  std::vector<Index> got;
+  const Vec3 v0 = sphere.V.row(0).transpose();
+  index.vertices_within(v0, 0.0, got);
+  EXPECT_EQ(got, std::vector<Index>{0});
+  index.vertices_within(Vec3(10, -20, 30), 120.0, got);  // the centre: every vertex at 120 (± rounding)
+  EXPECT_EQ(got, brute_vertices_within(sphere, Vec3(10, -20, 30), 120.0));
+  EXPECT_THROW(index.vertices_within(v0, -1.0, got), InvalidInput);
+  EXPECT_THROW(index.vertices_within(v0, std::numeric_limits<double>::infinity(), got), InvalidInput);
+  EXPECT_THROW(index.vertices_within(Vec3(0, std::nan(""), 0), 1.0, got), InvalidInput);
+}
+
 TEST(ClosestPointIndex, ConcurrentQueriesAgree) {
   const TriangleMesh m = meshes::icosphere(4, 100.0);
   const ClosestPointIndex index(m);

@@ -632,7 +632,7 @@ void check_nipple_bumps(const model::RiggedModel& model, const Points& V, const 
     if (t.name != "nipple_R" && t.name != "nipple_L") continue;
     if (scan_N.rows() == 0) scan_N = scan.normal_sign() * scan.vertex_normals();
     const Vec3 near = i < predicted.size() ? predicted[i] : model_landmark_position(model, t.model_landmark, V, params);
-    const auto bump = nipple_bump_on_scan(scan.mesh().V, scan_N, near);
+    const auto bump = nipple_bump_on_scan(scan.index(), scan_N, near);
     if (!bump) continue;
     const NippleBumpCheck c = check_nipple_bump(t.position, *bump, options.landmark_check_mm);
     keep_if_worse(out[i], AnatomyCheck{c.distance_mm, c.tolerance_mm, "the nipple's bump on the scan"});

@@ -46,6 +46,9 @@ class ScanTarget {
 
   /// The scan as given (the index's copy: the target keeps no second one).
   const TriangleMesh& mesh() const;
+  /// The scan's closest-point index, for other queries on the scan than the fit's (e.g. its
+  /// vertices around a landmark) without a second index.
+  const spatial::ClosestPointIndex& index() const { return *index_; }
   /// The scan's area-weighted unit vertex normals as given (mesh::vertex_normals(mesh()), not
   /// multiplied by normal_sign()): the index's, computed once with it.
   const Points& vertex_normals() const;

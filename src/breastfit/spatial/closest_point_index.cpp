@@ -421,6 +421,56 @@ struct ClosestPointIndex::Impl {
     }
   }
 
+  /// Appends the vertices of the leaves within reach whose corners lie within sqrt(r2) of q
+  /// (a vertex once per leaf holding it, so possibly several times).
+  void collect_vertices(const double* q, double r2, std::vector<Index>& out) const {
+    if (wide.empty()) return;
+    const detail::Bvh4Node* nodes = wide.data();
+    const float qf[3] = {static_cast<float>(q[0]), static_cast<float>(q[1]),
+                         static_cast<float>(q[2])};
+    const double qmax = std::max({std::abs(q[0]), std::abs(q[1]), std::abs(q[2]), 1.0});
+    const float thr = threshold(r2, 4e-7 * qmax);  // as search(): conservative in float
+    const Index* F = mesh.F.data();
+    std::int32_t stack[detail::kBvh4MaxStack];
+    int sp = 0;
+    stack[sp++] = 0;
+    while (sp > 0) {
+      const std::int32_t ref = stack[--sp];
+      if (ref >= 0) {
+        const detail::Bvh4Node& n = nodes[ref];
+        float d[4];
+        quad_sq_dist(n, qf, d);
+        for (int i = 3; i >= 0; --i)  // slot 0 popped first
+          if (n.ref[i] != detail::kBvh4Empty && d[i] <= thr) stack[sp++] = n.ref[i];
+        continue;
+      }
+      const unsigned char* base = blocks[static_cast<std::size_t>(~ref)].bytes;
+      const auto* h = reinterpret_cast<const LeafHeader*>(base);
+      const auto* dc = reinterpret_cast<const double*>(base + kHeaderBytes);
+      const auto* fc = reinterpret_cast<const float*>(base + kHeaderBytes);
+      std::uint32_t inside = 0;  // bit j: corner slot j within reach
+      for (int j = 0; j < h->num_vertices; ++j) {
+        double s = 0.0;
+        for (int k = 0; k < 3; ++k) {
+          const double c = h->float_coords ? static_cast<double>(fc[3 * j + k]) : dc[3 * j + k];
+          const double diff = c - q[k];
+          s += diff * diff;
+        }
+        if (s <= r2) inside |= 1u << j;
+      }
+      if (inside == 0) continue;
+      // Slots are numbered in first-use order over (triangle, corner): the vertex of slot j is
+      // the corner where it first appears.
+      int next = 0;
+      for (int t = 0; t < h->count; ++t)
+        for (int k = 0; k < 3; ++k)
+          if (h->corner[t][k] == next) {
+            if (inside & (1u << next)) out.push_back(F[3 * static_cast<std::ptrdiff_t>(h->face[t]) + k]);
+            ++next;
+          }
+    }
+  }
+
   ClosestPoint finish(const Best& best) const {
     ClosestPoint cp;
     cp.face = best.face;
@@ -516,6 +566,30 @@ std::vector<ClosestPoint> ClosestPointIndex::closest_batch(const Points& Q) cons
     hint = best.face;
   }
   return out;
+}
+
+void ClosestPointIndex::vertices_within(const Vec3& q, double radius, std::vector<Index>& out) const {
+  impl_->check_query(q);
+  if (!(radius >= 0.0) || !std::isfinite(radius)) {
+    throw InvalidInput("ClosestPointIndex::vertices_within: radius must be finite and >= 0, got " +
+                       std::to_string(radius));
+  }
+  out.clear();
+  impl_->collect_vertices(q.data(), radius * radius, out);
+  // Each vertex once, by index: a bitmap over the vertices when the ball holds many of them
+  // (linear in the vertices / 64), else sorting what was collected.
+  const auto nv = static_cast<std::size_t>(impl_->mesh.num_vertices());
+  if (out.size() * 64 < nv) {
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return;
+  }
+  std::vector<std::uint64_t> seen((nv + 63) / 64, 0);
+  for (const Index v : out) seen[static_cast<std::size_t>(v) >> 6] |= std::uint64_t{1} << (v & 63);
+  out.clear();
+  for (std::size_t w = 0; w < seen.size(); ++w)
+    for (std::uint64_t bits = seen[w]; bits != 0; bits &= bits - 1)
+      out.push_back(static_cast<Index>(64 * w + static_cast<std::size_t>(__builtin_ctzll(bits))));
 }
 
 Vec3 ClosestPointIndex::face_normal(Index face) const {

@@ -55,6 +55,14 @@ class ClosestPointIndex {
   /// \throws InvalidInput when a row is not finite (as closest() does for a non-finite q).
   std::vector<ClosestPoint> closest_batch(const Points& Q) const;
 
+  /// The vertices of the mesh's triangles within `radius` of q (inclusive), by ascending index,
+  /// each once, appended to `out` after clearing it. A vertex no triangle uses is never returned.
+  /// For neighbourhoods of a surface point (e.g. the scan around a landmark) without a second
+  /// index over the vertices: the tree's boxes prune, the leaves' own copies of their corners
+  /// are tested. Addition, backwards compatible.
+  /// \throws InvalidInput when q is not finite or radius is negative or not finite.
+  void vertices_within(const Vec3& q, double radius, std::vector<Index>& out) const;
+
   /// Unit face normal of a triangle (zero for degenerate triangles).
   Vec3 face_normal(Index face) const;
   /// Area-weighted vertex normal interpolated at a closest point (smooth normal).
