@@ -515,8 +515,9 @@ void check_pairs(const std::vector<LandmarkTarget>& given, const FitOptions& opt
     if (i < out.size() && !out[i])
       out[i] = AnatomyCheck{c.distance_mm, c.tolerance_mm,
                             "the mirror image of '" + partner + "' across the other landmarks' midline, off " + c.axis};
-    if (const auto other = unblamed_member(c); other && index_of(*other) < unblamed.size())
-      unblamed[index_of(*other)] = AnatomyCheck{
+    const auto other = unblamed_member(c);
+    if (const size_t j = other ? index_of(*other) : unblamed.size(); j < unblamed.size())
+      unblamed[j] = AnatomyCheck{
           c.distance_mm, c.tolerance_mm,
           "the mirror image of '" + c.blamed + "' across the other landmarks' midline, off " + c.axis};
   }
