@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -11,6 +12,7 @@
 #include <random>
 #include <string>
 
+#include "breastfit/fit/bilateral_check.h"
 #include "breastfit/fit/problem.h"
 #include "breastfit/fit/registration.h"
 #include "breastfit/fit/stage_minimizer.h"
@@ -144,6 +146,39 @@ TEST(LandmarkPrediction, AFlaggedLandmarkDoesNotDragTheFit) {
   const double with_check = mean_to_truth(held);
   EXPECT_LT(with_check, dragged);
   EXPECT_LT(with_check, as_given + 0.5) << "as given " << as_given << ", dragged " << dragged;
+}
+
+// A lowest breast point moved 20 mm sideways, within what its pair's mirror check tolerates, where
+// that check blames its partner: the moved one is flagged because it enters the combined check
+// with the pair's asymmetry (bilateral_check.h unblamed_member; without that it is not flagged).
+// The case is drawn in the scanner's axes (no misalignment: X is the patient's left), with less
+// annotation noise than the default so that nothing is flagged as given.
+TEST(LandmarkPrediction, APairMemberNotBlamedIsCheckedWithTheOthers) {
+  const auto& model = *test::default_template();
+  synth::SynthOptions so;
+  so.seed = 3;
+  so.misalign_rotation_deg = 0.0;
+  so.misalign_translation_m = 0.0;
+  so.landmark_noise_mm = 1.0;
+  const synth::SynthCase c = synth::make_case(model, so);
+  ScanTarget scan(c.scan);
+  auto lms = given(c);
+  const FitOptions o;
+  const FitResult as_given = register_template(model, scan, match_landmarks(model, lms), o);
+  for (const auto& ch : as_given.summary.landmark_checks) EXPECT_FALSE(ch.flagged) << ch.name << " as given";
+  const size_t k = 11;
+  ASSERT_EQ(lms[k].first, "lowest_breast_L");
+  lms[k].second.x() += 20.0;
+  const auto pair = check_bilateral_pairs(match_landmarks(model, lms), o.landmark_check_mm);
+  const auto lowest = std::find_if(pair.begin(), pair.end(), [](const BilateralCheck& b) { return b.left == "lowest_breast_L"; });
+  ASSERT_NE(lowest, pair.end());
+  ASSERT_TRUE(unblamed_member(*lowest).has_value()) << "the pair's check flags it by itself: no test of the rule";
+  EXPECT_EQ(*unblamed_member(*lowest), "lowest_breast_L");
+  const FitResult moved = register_template(model, scan, match_landmarks(model, lms), o);
+  const LandmarkCheck* ch = find(moved.summary, "lowest_breast_L");
+  ASSERT_NE(ch, nullptr);
+  EXPECT_TRUE(ch->flagged) << "fitted " << ch->distance_mm << " mm, predicted " << ch->predicted_distance_mm
+                           << " mm, anatomy " << ch->anatomy_distance_mm << " mm";
 }
 
 // The prediction of a landmark left out moves the model back towards where the others put it: a
