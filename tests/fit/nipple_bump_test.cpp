@@ -14,6 +14,7 @@
 #include "breastfit/mesh/normals.h"
 #include "breastfit/spatial/closest_point_index.h"
 #include "fit/synth_anatomy.h"
+#include "support/grid_mesh.h"
 
 namespace breastfit::fit {
 namespace {
@@ -82,17 +83,9 @@ TEST(NippleBump, RefusesWithoutADistinctSinglePeak) {
 
 // The height field's grid as triangles (two per square), for the index's overload.
 TriangleMesh triangulated(const HeightField& f) {
-  const int n = static_cast<int>(std::lround(std::sqrt(static_cast<double>(f.V.rows()))));
   TriangleMesh m;
   m.V = f.V;
-  m.F.resize(2 * (n - 1) * (n - 1), 3);
-  Index k = 0;
-  for (int i = 0; i + 1 < n; ++i)
-    for (int j = 0; j + 1 < n; ++j) {
-      const Index a = i * n + j, b = a + 1, c = a + n, d = c + 1;
-      m.F.row(k++) << a, b, d;
-      m.F.row(k++) << a, d, c;
-    }
+  m.F = test::grid_triangles(static_cast<int>(std::lround(std::sqrt(static_cast<double>(f.V.rows())))));
   return m;
 }
 

@@ -11,15 +11,20 @@ TriangleMesh grid_mesh(int n, double step, const std::function<double(double, do
       const double x = (i - n) * step, y = (j - n) * step;
       g.V.row(i * m + j) << x, y, height ? height(x, y) : 0.0;
     }
-  g.F.resize(2 * (m - 1) * (m - 1), 3);
+  g.F = grid_triangles(m);
+  return g;
+}
+
+Triangles grid_triangles(int m) {
+  Triangles F(2 * (m - 1) * (m - 1), 3);
   Index f = 0;
   for (int i = 0; i + 1 < m; ++i)
     for (int j = 0; j + 1 < m; ++j) {
       const Index a = i * m + j, b = (i + 1) * m + j, c = (i + 1) * m + j + 1, d = i * m + j + 1;
-      g.F.row(f++) << a, b, c;
-      g.F.row(f++) << a, c, d;
+      F.row(f++) << a, b, c;
+      F.row(f++) << a, c, d;
     }
-  return g;
+  return F;
 }
 
 }  // namespace breastfit::test

@@ -10,4 +10,8 @@ namespace breastfit::test {
 /// z = height(x, y) at every vertex (0 without a height function).
 TriangleMesh grid_mesh(int n, double step, const std::function<double(double, double)>& height = {});
 
+/// The triangles (two per square) of an m × m grid of vertices numbered row by row (vertex i * m + j
+/// at row i, column j), counter-clockwise when rows run along +x and columns along +y.
+Triangles grid_triangles(int m);
+
 }  // namespace breastfit::test
