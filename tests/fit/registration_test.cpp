@@ -387,3 +387,37 @@ TEST(Registration, ASubsetOfLandmarksPlacesTheAnatomyAgainAfterTheRefineStage) {
 
 }  // namespace
 }  // namespace breastfit::fit
+
+namespace breastfit::fit {
+namespace {
+
+// No landmarks given: for the refine stage each nipple is held at the breast's apex on the scan
+// (nipple_apex.h) instead of the breast's tip along the mean normal (below the nipple), and the
+// fitted nipples end nearer their truth (standing: 8.2 → 5.6 mm); the other anatomy held is the
+// same. (The synthetic supine case's fitted nipples stay 20–25 mm off either way: the apex is
+// sought within 35 mm of a nipple that far away and is no better there.)
+TEST(Registration, LandmarkFreeHoldsTheNipplesAtTheBreastsApexForTheRefineStage) {
+  const model::RiggedModel& m = *test::default_template();
+  {
+    const synth::SynthCase& c = test_anatomy::synth_case(synth::PoseType::Standing);
+    const auto error = [&](const FitResult& r) {
+      double sum = 0;
+      for (const char* name : {"nipple_R", "nipple_L"})
+        sum += (model_landmark_position(m, *m.landmark_index(name), r.model_vertices, r.params) -
+                test_anatomy::truth(c, name))
+                   .norm();
+      return sum / 2;
+    };
+    FitOptions o;
+    ScanTarget scan(c.scan);
+    const FitResult apex = register_template(m, scan, {}, o);
+    o.anatomical_nipple_apex = false;
+    ScanTarget again(c.scan);
+    const FitResult tip = register_template(m, again, {}, o);
+    EXPECT_EQ(apex.summary.anatomical_landmark_names, tip.summary.anatomical_landmark_names);
+    EXPECT_LT(error(apex), error(tip) - 1.0);
+  }
+}
+
+}  // namespace
+}  // namespace breastfit::fit

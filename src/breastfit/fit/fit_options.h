@@ -161,6 +161,14 @@ struct FitOptions {
   /// Landmark-free (fewer than 3 landmarks): after the pose stage, each nipple not given is held
   /// at the breast's tip found on the scan (landmark_check.h) for the shape and refine stages.
   bool anatomical_nipples = true;
+  /// With `anatomical_nipples`, for the refine stage (once the shape is fitted, and after the folds
+  /// and the shoulder's landmarks are placed from the tips) each nipple is held instead at the
+  /// breast's apex on the scan around the shaped model's nipple (nipple_apex.h: the tip lies 5–10 mm
+  /// below the nipple). Landmark MAE 9.49 → 8.91, 9.61 → 8.46, 9.35 → 8.65 mm on 14 visible, 16
+  /// validation and 10 hold-out torsos, contours within 0.1 mm (docs/REGISTRATION.md, Session 17);
+  /// held from the shape stage on, or before the folds and shoulders are placed, the contours lose
+  /// 0.15–0.5 mm. Only when the shape and refine stages run apart (folds or shoulders held).
+  bool anatomical_nipple_apex = true;
   /// Each lowest breast point not given (landmark-free or a subset) is held, for the shape stage, at
   /// the fold found on the scan below the nipple and, for the refine stage, at the point the
   /// sternum's and the nipple's proportions give on the scan (breast_fold.h), when the detectors are

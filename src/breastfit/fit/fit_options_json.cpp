@@ -87,6 +87,7 @@ const std::vector<Field<FitOptions>>& fields() {
       {"notch_check_mm", &F::notch_check_mm},
       {"max_surface_mae_mm", &F::max_surface_mae_mm}, {"min_kept_fraction", &F::min_kept_fraction},
       {"orientation_min_margin", &F::orientation_min_margin}, {"anatomical_nipples", &F::anatomical_nipples},
+      {"anatomical_nipple_apex", &F::anatomical_nipple_apex},
       {"anatomical_lowest_breast", &F::anatomical_lowest_breast}, {"anatomical_notch", &F::anatomical_notch},
       {"anatomical_shoulders", &F::anatomical_shoulders},
       {"threads", &F::threads}};

@@ -12,9 +12,10 @@
 /// (one noisy vertex does not decide it).
 ///
 /// Used by `breastfit landmarks` (pipeline/detect_landmarks.h) to refine the fitted nipple on the
-/// scan; the fit keeps holding the tip along the mean normal (held there instead, the apex took
-/// the landmark MAE down 0.2–0.55 mm but moved the breast's footprint up with the nipple: contours
-/// 0.2–0.4 mm worse on generated validation and hold-out torsos, docs/REGISTRATION.md).
+/// scan, and landmark-free by the fit's refine stage (FitOptions::anatomical_nipple_apex): the
+/// shape stage, the folds and the shoulder's targets keep the tip along the mean normal (held at
+/// the apex from the shape stage on, or with the folds and shoulders placed from it, the contours
+/// came out 0.15–0.6 mm worse on generated validation and hold-out torsos, docs/REGISTRATION.md).
 #include <optional>
 
 #include "breastfit/core/types.h"

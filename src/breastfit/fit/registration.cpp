@@ -212,6 +212,24 @@ std::optional<BodyAxes> fitted_body_axes(const model::RiggedModel& model, const 
   return BodyAxes{up, front.normalized()};
 }
 
+// The nipples held at the breast's tip, moved to the breast's apex on the scan (nipple_apex.h)
+// around each fitted nipple of `V`, with the fitted sternum as the vertical; a nipple whose apex
+// is not found keeps its target.
+void hold_nipples_at_apex(const model::RiggedModel& model, const Points& V, const model::PoseParams& params,
+                          const ScanTarget& scan, const std::vector<LandmarkTarget>& given,
+                          std::vector<LandmarkTarget>& held) {
+  const Points N = mesh::vertex_normals(V, model.rest.F);
+  const auto axes = fitted_body_axes(model, V, N, params);
+  if (!axes) return;
+  for (const char* name : {"nipple_R", "nipple_L"}) {
+    const auto idx = model.landmark_index(name);
+    const auto at = std::find_if(held.begin(), held.end(), [&](const LandmarkTarget& t) { return t.name == name; });
+    if (!idx || is_given(given, name) || at == held.end()) continue;
+    const Vec3 nipple = model_landmark_position(model, *idx, V, params);
+    if (const auto apex = nipple_apex_on_scan(scan.mesh().V, V, N, nipple, axes->up)) at->position = *apex;
+  }
+}
+
 // Targets for the lowest breast points not in `held`: the fold found on the scan below each
 // nipple held (given or the breast's tip), when the detector is sure.
 std::vector<LandmarkTarget> breast_fold_targets(const model::RiggedModel& model, const Points& V,
@@ -826,6 +844,10 @@ FitResult register_template(const model::RiggedModel& model, ScanTarget& scan, s
           if (hold_shoulders)
             for (auto& t : shoulder_targets(model, shaped, params, scan, held, summary.orientation.arm_pose))
               held.push_back(t);
+          // The nipples moved from the breast's tip to its apex once the folds and the shoulders are
+          // placed (they keep the tip: placed from the apex, the contours came out worse).
+          if (hold_nipples && options.anatomical_nipple_apex)
+            hold_nipples_at_apex(model, shaped, params, scan, landmarks, held);
           for (size_t i = before; i < held.size(); ++i) summary.anatomical_landmark_names.push_back(held[i].name);
           summary.anatomical_landmarks = static_cast<int>(held.size() - landmarks.size());
           problem_ptr = std::make_unique<Problem>(model, scan, options, held);
