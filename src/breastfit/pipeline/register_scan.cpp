@@ -40,10 +40,16 @@ std::vector<fit::LandmarkTarget> initialization_landmarks(std::vector<fit::Landm
 PreparedTarget prepare_target(const TriangleMesh& scan, const std::string& scan_name,
                               std::optional<mesh::Units> units, const fit::FitOptions& options,
                               const std::function<void(const PreparedScan&)>& before_index) {
+  return prepare_target(TriangleMesh(scan), scan_name, units, options, before_index);
+}
+
+PreparedTarget prepare_target(TriangleMesh&& scan, const std::string& scan_name, std::optional<mesh::Units> units,
+                              const fit::FitOptions& options,
+                              const std::function<void(const PreparedScan&)>& before_index) {
   PreparedTarget t;
   t.scan_name = scan_name;
   Timer phase;
-  t.scan = prepare_scan(scan, scan_name, units);
+  t.scan = prepare_scan(std::move(scan), scan_name, units);
   t.timings.push_back({"scan_preparation", phase.seconds()});
   if (before_index) before_index(t.scan);
   phase.reset();
@@ -71,7 +77,10 @@ RegisterResult register_prepared(const RegisterRequest& req, PreparedTarget& tar
   RegisterResult out;
   out.scan_name = target.scan_name;
   Timer phase;
-  out.scan = target.scan;
+  if (target.single_use)
+    out.scan = std::move(target.scan);  // not copied: the caller has no further fit on this target
+  else
+    out.scan = target.scan;
   out.warnings = out.scan.warnings;
   fit::FitOptions options = req.options;
   if (out.scan.was_point_cloud) options.correspondences.reject_boundary = false;
@@ -146,7 +155,14 @@ RegisterResult register_prepared(const RegisterRequest& req, PreparedTarget& tar
   double transfer_s = 0;
   double breasts_s = 0;
   metrics::SurfaceCoverage model_only_coverage;
-  std::vector<Index> faces;  // each fitted vertex's closest scan face: the model-only pass's warm starts
+  // Each fitted vertex's closest scan face: the warm starts of the coverage passes. They start from
+  // the final state's faces (its search at the fitted model's vertices, which the surface detail
+  // moves by a few mm at most), and the model-only pass starts from the first pass's: the same
+  // results as cold searches (closest_within's hint only bounds the search), for less descent.
+  std::vector<Index> faces;
+  if (out.fit.final_correspondences &&
+      out.fit.final_correspondences->hints.size() == static_cast<size_t>(out.fit.vertices.rows()))
+    faces = out.fit.final_correspondences->hints;
   const auto threads = static_cast<unsigned>(fit::resolve_threads(options.threads));
   auto measure_breasts = [&](unsigned breast_threads) {
     Timer own;
