@@ -1,15 +1,11 @@
 #include "breastfit/fit/problem.h"
 
 #include <cmath>
-#include <cstdint>
 #include <limits>
-#include <optional>
-#include <vector>
 
 #include "breastfit/core/errors.h"
 #include "breastfit/fit/energy_terms.h"
 #include "breastfit/mesh/normals.h"
-#include "breastfit/spatial/closest_point_index.h"
 
 namespace breastfit::fit {
 
@@ -99,27 +95,11 @@ double Problem::evaluate_landmark(size_t i, NormalEquations* eq) const {
 void Problem::orient_scan_normals(double max_dist) {
   const Points N = mesh::vertex_normals(ev_.vertices(), model_.rest.F);
   const Points& V = ev_.vertices();
-  // Every 4th vertex votes. The searches run along a Morton curve over those vertices, each
-  // warm-started from the face found for the one before (the template's vertex order jumps across
-  // the body, so cold searches in that order touched unrelated parts of the index); a hint only
-  // bounds the search, so every match is the cold search's, and the votes are summed in vertex
-  // order as before: the same sign.
-  const Index n = (V.rows() + 3) / 4;
-  Points Q(n, 3);
-  for (Index k = 0; k < n; ++k) Q.row(k) = V.row(4 * k);
-  std::vector<std::optional<ScanMatch>> found(static_cast<size_t>(n));
-  if (Q.allFinite()) {
-    Index hint = -1;
-    for (const std::uint32_t k : spatial::query_order(Q))
-      found[k] = scan_.match(Q.row(static_cast<Index>(k)).transpose(), max_dist, &hint);
-  } else {
-    for (Index k = 0; k < n; ++k) found[static_cast<size_t>(k)] = scan_.match(Q.row(k).transpose(), max_dist);
-  }
   double agree = 0, disagree = 0;
-  for (Index k = 0; k < n; ++k) {
-    const auto& m = found[static_cast<size_t>(k)];
+  for (Index i = 0; i < V.rows(); i += 4) {
+    const auto m = scan_.match(V.row(i).transpose(), max_dist);
     if (!m || m->on_boundary) continue;
-    const double d = N.row(4 * k).dot(m->normal);
+    const double d = N.row(i).dot(m->normal);
     (d >= 0 ? agree : disagree) += std::abs(d);
   }
   if (disagree > agree) scan_.set_normal_sign(-scan_.normal_sign());
