@@ -155,14 +155,7 @@ RegisterResult register_prepared(const RegisterRequest& req, PreparedTarget& tar
   double transfer_s = 0;
   double breasts_s = 0;
   metrics::SurfaceCoverage model_only_coverage;
-  // Each fitted vertex's closest scan face: the warm starts of the coverage passes. They start from
-  // the final state's faces (its search at the fitted model's vertices, which the surface detail
-  // moves by a few mm at most), and the model-only pass starts from the first pass's: the same
-  // results as cold searches (closest_within's hint only bounds the search), for less descent.
-  std::vector<Index> faces;
-  if (out.fit.final_correspondences &&
-      out.fit.final_correspondences->hints.size() == static_cast<size_t>(out.fit.vertices.rows()))
-    faces = out.fit.final_correspondences->hints;
+  std::vector<Index> faces;  // each fitted vertex's closest scan face: the model-only pass's warm starts
   const auto threads = static_cast<unsigned>(fit::resolve_threads(options.threads));
   auto measure_breasts = [&](unsigned breast_threads) {
     Timer own;
