@@ -92,7 +92,9 @@ void register_register(CLI::App& app, int& exit_code) {
     try {
       req.options = load_fit_options(args->config, args->fit);
       if (args->no_landmarks) req.options.use_landmarks = false;
-      target = pipeline::prepare_target(req.scan, req.scan_name, req.units, req.options, start_layers);
+      // The scan as read is needed no more once prepared: its arrays are taken over, not copied.
+      target = pipeline::prepare_target(std::move(req.scan), req.scan_name, req.units, req.options, start_layers);
+      target.single_use = true;  // one fit: the result takes the prepared scan instead of a copy
     } catch (...) {
       later_error = std::current_exception();
     }

@@ -590,17 +590,35 @@ void keep_if_worse(std::optional<AnatomyCheck>& slot, AnatomyCheck c) {
   if (!slot || !(slot->distance_mm > slot->tolerance_mm) || beyond(c) > beyond(*slot)) slot = std::move(c);
 }
 
+// The scan's outward vertex normals for the anatomy checks, as `const Points&` where a check takes
+// them: the index's own (ScanTarget::vertex_normals) when the normal sign is +1 — the same bits as
+// the product with the sign, without a copy of #V × 3 doubles per fit — else their negation,
+// computed once on first use.
+class OutwardScanNormals {
+ public:
+  explicit OutwardScanNormals(const ScanTarget& scan) : scan_(scan) {}
+  operator const Points&() {  // NOLINT(google-explicit-constructor): passed where Points are
+    if (scan_.normal_sign() == 1.0) return scan_.vertex_normals();
+    if (flipped_.rows() == 0) flipped_ = scan_.normal_sign() * scan_.vertex_normals();
+    return flipped_;
+  }
+
+ private:
+  const ScanTarget& scan_;
+  Points flipped_;
+};
+
 // Session 13 (docs/REGISTRATION.md): the prediction and the anatomical check agreeing
 // (combined_check.h), the nipples against the breast's apex (nipple_apex_check.h), the xiphoid
 // against the lowest breast points' height (xiphoid_check.h). Each takes a landmark's anatomical
 // check when it flags it and is farther beyond than the one there; `out` holds the earlier checks,
-// `scan_N` the scan's outward normals when already computed (else empty; computed here if needed).
+// `scan_N` the scan's outward normals (computed on first use when the sign is -1).
 // A pair's member not blamed by its check (`unblamed`, check_pairs) enters the combined check with
 // the pair's asymmetry when it has no check of its own (session 16).
 void check_agreement(const model::RiggedModel& model, const Points& V, const model::PoseParams& params,
                      const ScanTarget& scan, const std::optional<BodyAxes>& axes,
                      const std::vector<LandmarkTarget>& given, const std::vector<Vec3>& predicted,
-                     const FitOptions& options, Points& scan_N, std::vector<std::optional<AnatomyCheck>>& out,
+                     const FitOptions& options, OutwardScanNormals& scan_N, std::vector<std::optional<AnatomyCheck>>& out,
                      const std::vector<std::optional<AnatomyCheck>>& unblamed) {
   std::vector<std::optional<AnatomyCheck>> before = out;
   for (size_t i = 0; i < before.size() && i < unblamed.size(); ++i)
@@ -621,7 +639,6 @@ void check_agreement(const model::RiggedModel& model, const Points& V, const mod
     if (name != "nipple_R" && name != "nipple_L") continue;
     const auto frame = fitted_sternum_frame(model, V, params, name.back());
     if (!frame) continue;
-    if (scan_N.rows() == 0) scan_N = scan.normal_sign() * scan.vertex_normals();
     const Vec3 near = i < predicted.size() ? predicted[i] : given[i].position;
     const auto apex = nipple_apex_on_scan(scan.mesh().V, scan.mesh().V, scan_N, near, axes->up);
     if (!apex) continue;
@@ -644,12 +661,11 @@ void check_agreement(const model::RiggedModel& model, const Points& V, const mod
 // (nipple_bump_check.h), searched around its prediction (the fitted one without predictions).
 void check_nipple_bumps(const model::RiggedModel& model, const Points& V, const model::PoseParams& params,
                         const ScanTarget& scan, const std::vector<LandmarkTarget>& given,
-                        const std::vector<Vec3>& predicted, const FitOptions& options, Points& scan_N,
+                        const std::vector<Vec3>& predicted, const FitOptions& options, OutwardScanNormals& scan_N,
                         std::vector<std::optional<AnatomyCheck>>& out) {
   for (size_t i = 0; i < given.size(); ++i) {
     const LandmarkTarget& t = given[i];
     if (t.name != "nipple_R" && t.name != "nipple_L") continue;
-    if (scan_N.rows() == 0) scan_N = scan.normal_sign() * scan.vertex_normals();
     const Vec3 near = i < predicted.size() ? predicted[i] : model_landmark_position(model, t.model_landmark, V, params);
     const auto bump = nipple_bump_on_scan(scan.index(), scan_N, near);
     if (!bump) continue;
@@ -674,12 +690,11 @@ std::vector<std::optional<AnatomyCheck>> check_anatomy(const model::RiggedModel&
   ev.set_params(params);
   const Points& V = ev.vertices();
   const auto axes = fitted_body_axes(model, V, mesh::vertex_normals(V, model.rest.F), params);
-  Points scan_N;  // computed once, for the first nipple given
+  OutwardScanNormals scan_N(scan);  // the index's own normals (negated once, if need be)
   for (size_t i = 0; i < given.size(); ++i) {
     const LandmarkTarget& t = given[i];
     const Vec3 near = i < predicted.size() ? predicted[i] : model_landmark_position(model, t.model_landmark, V, params);
     if (t.name == "nipple_R" || t.name == "nipple_L") {
-      if (scan_N.rows() == 0) scan_N = scan.normal_sign() * scan.vertex_normals();
       if (const auto tip = breast_tip_on_scan(scan.mesh().V, scan.mesh().V, scan_N, near))
         out[i] = AnatomyCheck{(*tip - t.position).norm(), options.nipple_tip_check_mm, "the breast's tip on the scan"};
     } else if (t.name == "sternal_notch" && axes) {

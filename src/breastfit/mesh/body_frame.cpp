@@ -73,15 +73,51 @@ std::vector<Vec3> subsample(const std::vector<Vec3>& p, size_t n) {
   return out;
 }
 
+/// Points sorted along one coordinate axis (the one of the largest extent), for nearest-point
+/// queries that scan outward from the query's coordinate along it.
+struct SortedPoints {
+  int axis = 0;
+  std::vector<Vec3> p;       ///< sorted by p[i][axis]
+  std::vector<double> key;   ///< p[i][axis]
+};
+
+SortedPoints sorted_along_widest_axis(std::vector<Vec3> p) {
+  SortedPoints s;
+  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (const Vec3& q : p) lo = lo.cwiseMin(q), hi = hi.cwiseMax(q);
+  (hi - lo).maxCoeff(&s.axis);
+  const int axis = s.axis;
+  std::sort(p.begin(), p.end(), [axis](const Vec3& a, const Vec3& b) { return a[axis] < b[axis]; });
+  s.key.reserve(p.size());
+  for (const Vec3& q : p) s.key.push_back(q[axis]);
+  s.p = std::move(p);
+  return s;
+}
+
 /// Mean distance from the mirror image of `probe` (across the plane through c with normal a) to
-/// the nearest point of `target` (brute force; both small).
-double mirror_asymmetry(const std::vector<Vec3>& probe, const std::vector<Vec3>& target, const Vec3& c,
-                        const Vec3& a) {
+/// the nearest point of `target` (exhaustive in effect; both small). The scan along the sorted
+/// axis stops once that coordinate's difference alone, squared, exceeds the best squared distance
+/// so far: every point farther along has a squared distance at least that large (rounding is
+/// monotone), so the minimum, and the sum, are the bits of the brute-force search over all pairs.
+double mirror_asymmetry(const std::vector<Vec3>& probe, const SortedPoints& target, const Vec3& c, const Vec3& a) {
   double sum = 0;
+  const size_t n = target.p.size();
+  const int axis = target.axis;
   for (const Vec3& p : probe) {
     const Vec3 m = p - 2.0 * (p - c).dot(a) * a;
     double best = std::numeric_limits<double>::infinity();
-    for (const Vec3& q : target) best = std::min(best, (q - m).squaredNorm());
+    const double x = m[axis];
+    const size_t start = static_cast<size_t>(std::lower_bound(target.key.begin(), target.key.end(), x) - target.key.begin());
+    for (size_t j = start; j < n; ++j) {
+      const double d = target.key[j] - x;
+      if (d * d > best) break;
+      best = std::min(best, (target.p[j] - m).squaredNorm());
+    }
+    for (size_t j = start; j-- > 0;) {
+      const double d = target.key[j] - x;
+      if (d * d > best) break;
+      best = std::min(best, (target.p[j] - m).squaredNorm());
+    }
     sum += std::sqrt(best);
   }
   return sum / static_cast<double>(probe.size());
@@ -191,7 +227,8 @@ BodyFrame body_frame_from_principal_axes(const TriangleMesh& mesh) {
   // Lateral axis: the normal of the best mirror-symmetry plane through the centroid, searched
   // over directions orthogonal to the antero-posterior axis (coarse 6° steps, then 1°), since
   // the in-plane principal axes are unreliable for cross-shaped crops (supine, arms abducted).
-  const std::vector<Vec3> probe = subsample(s.p, 300), target = subsample(s.p, 2000);
+  const std::vector<Vec3> probe = subsample(s.p, 300);
+  const SortedPoints target = sorted_along_widest_axis(subsample(s.p, 2000));
   const Vec3 u = e2.normalized(), v = ap.cross(u).normalized();
   auto direction = [&](double deg) {
     const double a = deg * 3.14159265358979323846 / 180.0;

@@ -40,10 +40,16 @@ std::vector<fit::LandmarkTarget> initialization_landmarks(std::vector<fit::Landm
 PreparedTarget prepare_target(const TriangleMesh& scan, const std::string& scan_name,
                               std::optional<mesh::Units> units, const fit::FitOptions& options,
                               const std::function<void(const PreparedScan&)>& before_index) {
+  return prepare_target(TriangleMesh(scan), scan_name, units, options, before_index);
+}
+
+PreparedTarget prepare_target(TriangleMesh&& scan, const std::string& scan_name, std::optional<mesh::Units> units,
+                              const fit::FitOptions& options,
+                              const std::function<void(const PreparedScan&)>& before_index) {
   PreparedTarget t;
   t.scan_name = scan_name;
   Timer phase;
-  t.scan = prepare_scan(scan, scan_name, units);
+  t.scan = prepare_scan(std::move(scan), scan_name, units);
   t.timings.push_back({"scan_preparation", phase.seconds()});
   if (before_index) before_index(t.scan);
   phase.reset();
@@ -71,7 +77,10 @@ RegisterResult register_prepared(const RegisterRequest& req, PreparedTarget& tar
   RegisterResult out;
   out.scan_name = target.scan_name;
   Timer phase;
-  out.scan = target.scan;
+  if (target.single_use)
+    out.scan = std::move(target.scan);  // not copied: the caller has no further fit on this target
+  else
+    out.scan = target.scan;
   out.warnings = out.scan.warnings;
   fit::FitOptions options = req.options;
   if (out.scan.was_point_cloud) options.correspondences.reject_boundary = false;

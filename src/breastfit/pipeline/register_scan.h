@@ -105,6 +105,9 @@ struct PreparedTarget {
   /// The breast volumes' topologies and fill factorisations of the fits so far (the same result
   /// as without it: transfer/volume_cache.h).
   std::shared_ptr<transfer::VolumeCache> volumes = std::make_shared<transfer::VolumeCache>();
+  /// One registration only (`register`): register_prepared moves `scan` into its result instead
+  /// of copying it, and the target's `scan` is empty afterwards (its index keeps its own mesh).
+  bool single_use = false;
 };
 
 /// Prepares `scan` (file units) and builds its index with `options`' reverse-term samples;
@@ -112,6 +115,11 @@ struct PreparedTarget {
 /// report's layers there: report_layers.h). \throws InvalidInput as register_scan for a bad scan.
 PreparedTarget prepare_target(const TriangleMesh& scan, const std::string& scan_name,
                               std::optional<mesh::Units> units, const fit::FitOptions& options = {},
+                              const std::function<void(const PreparedScan&)>& before_index = {});
+/// The same, taking over `scan`'s arrays instead of copying them (the scan as read is not needed
+/// after its preparation).
+PreparedTarget prepare_target(TriangleMesh&& scan, const std::string& scan_name, std::optional<mesh::Units> units,
+                              const fit::FitOptions& options = {},
                               const std::function<void(const PreparedScan&)>& before_index = {});
 
 /// Sees a warm re-fit's first result (RegisterResult::complete false; its `scan` empty), on the

@@ -35,6 +35,10 @@ TriangleMesh splat_point_cloud(const Points& P, const Points& N, double radius) 
 }  // namespace
 
 PreparedScan prepare_scan(const TriangleMesh& scan, const std::string& name, std::optional<mesh::Units> requested) {
+  return prepare_scan(TriangleMesh(scan), name, requested);
+}
+
+PreparedScan prepare_scan(TriangleMesh&& scan, const std::string& name, std::optional<mesh::Units> requested) {
   PreparedScan out;
   if (scan.num_vertices() == 0) throw InvalidInput(name + ": the scan has no vertices");
   if (!scan.V.allFinite()) throw InvalidInput(name + ": the scan has non-finite coordinates");
@@ -60,11 +64,13 @@ PreparedScan prepare_scan(const TriangleMesh& scan, const std::string& name, std
       << " for an adult upper torso (about 250-700 mm): check --units and what was scanned";
     out.warnings.push_back(s.str());
   }
-  out.mesh_mm = scan;
-  out.mesh_mm.V *= out.to_mm;
+  const bool point_cloud = scan.is_point_cloud();
+  const Index num_vertices = scan.num_vertices();
+  out.mesh_mm = std::move(scan);  // the caller's scan is not needed any more: not copied (2 copies of V and F less)
+  if (out.to_mm != 1.0) out.mesh_mm.V *= out.to_mm;  // x * 1.0 is x: the same bits without the pass
   out.mesh_mm.N.resize(0, 3);
-  if (scan.is_point_cloud()) {
-    if (scan.num_vertices() < 100) throw InvalidInput(name + ": a point cloud of fewer than 100 points");
+  if (point_cloud) {
+    if (num_vertices < 100) throw InvalidInput(name + ": a point cloud of fewer than 100 points");
     out.was_point_cloud = true;
     const Points N = spatial::point_cloud_normals(out.mesh_mm.V);
     // splat radius: median nearest-neighbour spacing

@@ -34,6 +34,9 @@ inline constexpr std::array<double, 2> kTorsoExtentMm{250.0, 1000.0};
 ///         upper torso (150–1500 mm after conversion), each naming the file; warns outside
 ///         kTorsoExtentMm.
 PreparedScan prepare_scan(const TriangleMesh& scan, const std::string& name, std::optional<mesh::Units> requested);
+/// The same, taking over `scan`'s arrays instead of copying them (`register`: the scan as read is
+/// not needed after its preparation).
+PreparedScan prepare_scan(TriangleMesh&& scan, const std::string& name, std::optional<mesh::Units> requested);
 
 /// Landmarks converted to mm (declared units, else the scan's), checked for NaN.
 std::vector<std::pair<std::string, Vec3>> prepare_landmarks(const LandmarkSet& landmarks, mesh::Units scan_units);
