@@ -3,6 +3,7 @@
 // labels, landmark-free fits.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -124,6 +125,28 @@ TEST(RegisterCommand, ReportsAreTraceable) {
   const auto fitted_landmarks = read_json(out / "landmarks.mrk.json");
   EXPECT_EQ(fitted_landmarks["markups"][0]["name"], "breastfit fitted landmarks");
   EXPECT_TRUE(fitted_landmarks["markups"][0]["display"].contains("selectedColor"));
+}
+
+// With report.html a fit from landmarks draws the scan's layers on a thread of its own: the automatic
+// thread count leaves that thread a core (the fit's count is recorded, at least 1, no longer 0 =
+// automatic); an explicit --threads is kept, and without report.html the count stays automatic.
+TEST(RegisterCommand, LeavesTheReportLayersACoreWhenTheThreadsAreAutomatic) {
+  if (test::cli_path().empty()) GTEST_SKIP() << "CLI not built";
+  if (std::getenv("OMP_NUM_THREADS")) GTEST_SKIP() << "OMP_NUM_THREADS fixes the count";
+  const fs::path c = synth_case(5, "mm");
+  const auto threads = [&](const std::string& extra, const std::string& name) {
+    const fs::path out = test::temp_dir() / name;
+    std::string log;
+    EXPECT_EQ(test::run_cli("register '" + (c / "scan.ply").string() + "' -l '" + (c / "landmarks.mrk.json").string() +
+                                "' --quiet " + extra + " -o '" + out.string() + "'",
+                            &log),
+              0)
+        << log;
+    return read_json(out / "report.json")["provenance"]["fit_options"]["threads"].get<int>();
+  };
+  EXPECT_GE(threads("", "auto"), 1);
+  EXPECT_EQ(threads("--threads 2", "two"), 2);
+  EXPECT_EQ(threads("--no-report-html", "plain"), 0);
 }
 
 TEST(RegisterCommand, RefusesATemplateThatIsNotATorso) {
