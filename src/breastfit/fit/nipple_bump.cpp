@@ -3,13 +3,12 @@
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstdint>
 #include <unordered_map>
-#include <utility>
 #include <vector>
 
+#include "breastfit/spatial/cell_grid.h"
 #include "breastfit/spatial/closest_point_index.h"
 
 namespace breastfit::fit {
@@ -34,92 +33,6 @@ Points rows_of(const Points& points, const std::vector<Index>& rows) {
   return out;
 }
 
-// Squared distance of row i of P to p, summed axis by axis (as the k-d tree the measurement used
-// before, spatial::KnnIndex, sums it: the same neighbours and the same order, bit for bit).
-double sq_dist(const Points& P, Index i, const Vec3& p) {
-  double s = 0.0;
-  for (int k = 0; k < 3; ++k) {
-    const double d = p[k] - P(i, k);
-    s += d * d;
-  }
-  return s;
-}
-
-// Radius queries over a small set of points (a few hundred to a few thousand: one per cell of the
-// scan around the centre), without a tree: the points counting-sorted into a dense grid over their
-// bounds, cells a `split`-th of the query radius wide, so a query reads the (2 split + 1)² runs of
-// cells along z around its own. The neighbours come by ascending distance, ties by index (the
-// summation order of the planes and heights; the k-d tree used before gave the same).
-class CellGrid {
- public:
-  CellGrid(const Points& points, double radius, int split)
-      : points_(points), split_(split), cell_(radius / split * (1 + 1e-9)) {  // a hair wider: never a cell too few
-    if (points.rows() == 0) return;
-    lo_ = points.colwise().minCoeff().transpose();
-    const Vec3 extent = points.colwise().maxCoeff().transpose() - lo_;
-    for (int k = 0; k < 3; ++k) n_[k] = static_cast<Index>(std::floor(extent[k] / cell_)) + 1;
-    std::vector<Index> cell(static_cast<size_t>(points.rows()));
-    start_.assign(static_cast<size_t>(n_[0] * n_[1] * n_[2] + 1), 0);
-    for (Index i = 0; i < points.rows(); ++i) {
-      const auto c = cell_of(points.row(i).transpose());
-      cell[static_cast<size_t>(i)] = (c[0] * n_[1] + c[1]) * n_[2] + c[2];
-      ++start_[static_cast<size_t>(cell[static_cast<size_t>(i)]) + 1];
-    }
-    for (size_t c = 1; c < start_.size(); ++c) start_[c] += start_[c - 1];
-    order_.resize(static_cast<size_t>(points.rows()));
-    std::vector<Index> fill(start_.begin(), start_.end() - 1);
-    for (Index i = 0; i < points.rows(); ++i) order_[static_cast<size_t>(fill[static_cast<size_t>(cell[static_cast<size_t>(i)])]++)] = i;
-  }
-
-  // The points within `radius` (<= the grid's radius) of p, inclusive, by ascending squared
-  // distance (sq) and index.
-  void within(const Vec3& p, double radius, std::vector<Index>& nb, std::vector<double>& sq) const {
-    found_.clear();
-    nb.clear();
-    sq.clear();
-    if (order_.empty()) return;
-    const double r2 = radius * radius;
-    std::array<Index, 3> from{}, to{};
-    for (int k = 0; k < 3; ++k) {
-      const double u = std::floor((p[k] - lo_[k]) / cell_);
-      from[k] = static_cast<Index>(std::max(u - split_, 0.0));
-      to[k] = static_cast<Index>(std::min(u + split_, static_cast<double>(n_[k] - 1)));
-      if (u + split_ < 0 || u - split_ > static_cast<double>(n_[k] - 1)) return;
-    }
-    for (Index x = from[0]; x <= to[0]; ++x)
-      for (Index y = from[1]; y <= to[1]; ++y) {
-        const Index row = (x * n_[1] + y) * n_[2];
-        for (Index k = start_[static_cast<size_t>(row + from[2])], e = start_[static_cast<size_t>(row + to[2] + 1)]; k < e; ++k) {
-          const Index i = order_[static_cast<size_t>(k)];
-          const double s = sq_dist(points_, i, p);
-          if (s <= r2) found_.emplace_back(s, i);
-        }
-      }
-    std::sort(found_.begin(), found_.end());
-    for (const auto& [s, i] : found_) {
-      nb.push_back(i);
-      sq.push_back(s);
-    }
-  }
-
- private:
-  std::array<Index, 3> cell_of(const Vec3& p) const {
-    std::array<Index, 3> c{};
-    for (int k = 0; k < 3; ++k)
-      c[k] = std::min(static_cast<Index>(std::floor((p[k] - lo_[k]) / cell_)), n_[k] - 1);
-    return c;
-  }
-
-  const Points& points_;
-  int split_;
-  double cell_;
-  Vec3 lo_ = Vec3::Zero();
-  std::array<Index, 3> n_{};
-  std::vector<Index> start_;  // by cell (x, y, z → (x n_y + y) n_z + z): first slot of order_
-  std::vector<Index> order_;  // the points by cell
-  mutable std::vector<std::pair<double, Index>> found_;
-};
-
 // The measurement over the scan vertices `local` (ascending indices): those within the search
 // radius and the ring's outer radius of the centre.
 std::optional<NippleBump> measure_local(const Points& scan_vertices, const Points& scan_normals,
@@ -135,7 +48,7 @@ std::optional<NippleBump> measure_local(const Points& scan_vertices, const Point
                            fine_rows = one_per_cell(L, options.disc_cell_mm);
   const Points coarse = rows_of(L, coarse_rows), fine = rows_of(L, fine_rows);
   // Rings in cells of half their radius (a quarter of the volume read), discs in cells of theirs.
-  const CellGrid coarse_cells(coarse, options.ring_outer_mm, 2), fine_cells(fine, options.disc_mm, 1);
+  const spatial::CellGrid coarse_cells(coarse, options.ring_outer_mm, 2), fine_cells(fine, options.disc_mm, 1);
 
   const double inner2 = options.ring_inner_mm * options.ring_inner_mm;
   std::vector<Index> nb;
@@ -221,7 +134,7 @@ std::optional<NippleBump> measure_nipple_bump(const Points& scan_vertices, const
   const double reach = options.search_radius_mm + options.ring_outer_mm;
   std::vector<Index> local;
   for (Index i = 0; i < scan_vertices.rows(); ++i)
-    if (sq_dist(scan_vertices, i, centre) <= reach * reach) local.push_back(i);
+    if (spatial::row_sq_dist(scan_vertices, i, centre) <= reach * reach) local.push_back(i);
   return measure_local(scan_vertices, scan_normals, local, centre, options);
 }
 
