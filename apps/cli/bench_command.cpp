@@ -290,10 +290,11 @@ void register_bench(CLI::App& app, int& exit_code) {
         // beside the fit, then every output with report.html (made while the others are written).
         Timer full;
         const double cpu_full = process_cpu_s();
-        const pipeline::RegisterRequest full_req = read_request();
+        pipeline::RegisterRequest full_req = read_request();
+        full_req.options.threads = pipeline::fit_threads_beside_layers(full_req.landmarks, full_req.options);  // as register
         pipeline::RegisterOutputOptions with_layers = full_options;
-        pipeline::PreparedTarget target =
-            pipeline::prepare_target(full_req.scan, full_req.scan_name, {}, options, [&](const pipeline::PreparedScan& scan) {
+        pipeline::PreparedTarget target = pipeline::prepare_target(
+            full_req.scan, full_req.scan_name, {}, full_req.options, [&](const pipeline::PreparedScan& scan) {
               with_layers.layers = pipeline::start_report_layers(scan, full_req.landmarks, full_req.options,
                                                                  [m = full_req.model] { return m; }, full_options.figures);
             });

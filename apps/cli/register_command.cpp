@@ -1,13 +1,11 @@
 // breastfit register SCAN [--landmarks FILE] --out DIR: the paper's registration of the template.
 #include <algorithm>
-#include <cstdlib>
 #include <exception>
 #include <future>
 #include <iostream>
 #include <type_traits>
 
 #include "breastfit/core/errors.h"
-#include "breastfit/fit/parallel_chunks.h"
 #include "breastfit/io/io.h"
 #include "breastfit/io/landmarks_io.h"
 #include "breastfit/model/gltf_io.h"
@@ -95,16 +93,9 @@ void register_register(CLI::App& app, int& exit_code) {
     try {
       req.options = load_fit_options(args->config, args->fit);
       if (args->no_landmarks) req.options.use_landmarks = false;
-      // A fit from landmarks draws the report's scan layers on a thread of its own, which keeps a
-      // core busy to the end: an automatic thread count (no --threads, no OMP_NUM_THREADS, none in
-      // the config) leaves that core to it. One fit thread beside the layers measured 6-12 ms less
-      // wall time and 20-28 ms less CPU than two on 2 cores (docs/PERFORMANCE.md, Session 17);
-      // the results are the same bits with any count.
-      const bool draws_layers = output_options.report_html && req.options.use_landmarks && req.landmarks &&
-                                req.landmarks->points.size() >= 3 &&
-                                (req.options.max_landmarks < 0 || req.options.max_landmarks >= 3);
-      if (draws_layers && req.options.threads == 0 && !std::getenv("OMP_NUM_THREADS"))
-        req.options.threads = std::max(1, fit::resolve_threads(0) - 1);
+      // The report's layers drawn beside the fit keep a core busy: an automatic thread count leaves
+      // it to them.
+      if (output_options.report_html) req.options.threads = pipeline::fit_threads_beside_layers(req.landmarks, req.options);
       // The scan as read is needed no more once prepared: its arrays are taken over, not copied.
       target = pipeline::prepare_target(std::move(req.scan), req.scan_name, req.units, req.options, start_layers);
       target.single_use = true;  // one fit: the result takes the prepared scan instead of a copy

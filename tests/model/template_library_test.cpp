@@ -6,27 +6,17 @@
 
 #include "breastfit/core/errors.h"
 #include "breastfit/model/gltf_io.h"
+#include "support/scoped_env.h"
 #include "support/test_paths.h"
 #include "support/toy_model.h"
 
 namespace breastfit::model {
 namespace {
 
-/// Sets BREASTFIT_TEMPLATE for the scope of a test and restores the previous value.
-class ScopedTemplateEnv {
+/// BREASTFIT_TEMPLATE for the scope of a test, restored afterwards.
+class ScopedTemplateEnv : public test::ScopedEnv {
  public:
-  explicit ScopedTemplateEnv(const char* value) {
-    if (const char* old = std::getenv("BREASTFIT_TEMPLATE")) old_ = old;
-    if (value) ::setenv("BREASTFIT_TEMPLATE", value, 1);
-    else ::unsetenv("BREASTFIT_TEMPLATE");
-  }
-  ~ScopedTemplateEnv() {
-    if (old_) ::setenv("BREASTFIT_TEMPLATE", old_->c_str(), 1);
-    else ::unsetenv("BREASTFIT_TEMPLATE");
-  }
-
- private:
-  std::optional<std::string> old_;
+  explicit ScopedTemplateEnv(const char* value) : ScopedEnv("BREASTFIT_TEMPLATE", value) {}
 };
 
 TEST(TemplateLibrary, EnvironmentVariableWins) {

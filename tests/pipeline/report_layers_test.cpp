@@ -4,16 +4,19 @@
 // thread or several), the plan's errors, the crop, and the legend clear of the body.
 #include "breastfit/pipeline/report_layers.h"
 
+#include <algorithm>
 #include <future>
 
 #include <gtest/gtest.h>
 
 #include "breastfit/core/errors.h"
+#include "breastfit/fit/parallel_chunks.h"
 #include "breastfit/fit/registration.h"
 #include "breastfit/mesh/landmarks.h"
 #include "breastfit/render/torso_overlays.h"
 #include "breastfit/synth/synth_case.h"
 #include "pipeline/report_test_case.h"
+#include "support/scoped_env.h"
 
 namespace breastfit {
 namespace {
@@ -217,6 +220,41 @@ TEST(ReportLayers, TheLegendNeverCoversTheBody) {
         body += !(scan_alone.at(x, y) == ro.background);
     EXPECT_EQ(body, 0) << pipeline::overlay_figure_specs()[k].id;
   }
+}
+
+TEST(ReportLayers, DrawnBesideAFitFromThreeLandmarksWhoseAutomaticThreadsLeaveThemACore) {
+  LandmarkSet three;
+  three.points = {{"sternal_notch", Vec3(0, 0, 0)}, {"nipple_R", Vec3(-90, -200, 60)}, {"nipple_L", Vec3(90, -200, 60)}};
+  LandmarkSet two = three;
+  two.points.pop_back();
+  fit::FitOptions o;
+  EXPECT_TRUE(pipeline::layers_drawn_beside_fit(three, o));
+  EXPECT_FALSE(pipeline::layers_drawn_beside_fit(std::nullopt, o));
+  EXPECT_FALSE(pipeline::layers_drawn_beside_fit(two, o));
+  fit::FitOptions landmark_free = o;
+  landmark_free.use_landmarks = false;
+  EXPECT_FALSE(pipeline::layers_drawn_beside_fit(three, landmark_free));
+  fit::FitOptions first_two = o, first_three = o;
+  first_two.max_landmarks = 2;
+  first_three.max_landmarks = 3;
+  EXPECT_FALSE(pipeline::layers_drawn_beside_fit(three, first_two));
+  EXPECT_TRUE(pipeline::layers_drawn_beside_fit(three, first_three));
+
+  {
+    const test::ScopedEnv no_omp("OMP_NUM_THREADS", nullptr);
+    // The automatic count, one core fewer (the load average may move between the two reads).
+    const int before = fit::resolve_threads(0);
+    const int beside = pipeline::fit_threads_beside_layers(three, o);
+    const int after = fit::resolve_threads(0);
+    EXPECT_TRUE(beside == std::max(1, before - 1) || beside == std::max(1, after - 1)) << beside;
+    EXPECT_EQ(pipeline::fit_threads_beside_layers(two, o), 0);  // no layers beside the fit: as set
+    EXPECT_EQ(pipeline::fit_threads_beside_layers(three, landmark_free), 0);
+    fit::FitOptions two_threads = o;
+    two_threads.threads = 2;
+    EXPECT_EQ(pipeline::fit_threads_beside_layers(three, two_threads), 2);  // a person's count is kept
+  }
+  const test::ScopedEnv omp("OMP_NUM_THREADS", "2");
+  EXPECT_EQ(pipeline::fit_threads_beside_layers(three, o), 0);  // the environment's count is kept
 }
 
 }  // namespace

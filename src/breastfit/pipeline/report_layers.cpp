@@ -1,8 +1,11 @@
 #include "breastfit/pipeline/report_layers.h"
 
+#include <algorithm>
+#include <cstdlib>
 #include <thread>
 
 #include "breastfit/fit/initialization.h"
+#include "breastfit/fit/parallel_chunks.h"
 #include "breastfit/fit/registration.h"
 #include "breastfit/fit/sliding_landmarks.h"
 #include "breastfit/mesh/cleanup.h"
@@ -172,10 +175,21 @@ render::Rasterizer ReportLayerDrawing::take(size_t k) {
   return drawn_future_[k].get();
 }
 
+bool layers_drawn_beside_fit(const std::optional<LandmarkSet>& landmarks, const fit::FitOptions& fit_options) {
+  return landmarks && fit_options.use_landmarks && landmarks->points.size() >= 3 &&
+         (fit_options.max_landmarks < 0 || fit_options.max_landmarks >= 3);
+}
+
+int fit_threads_beside_layers(const std::optional<LandmarkSet>& landmarks, const fit::FitOptions& fit_options) {
+  if (!layers_drawn_beside_fit(landmarks, fit_options) || fit_options.threads != 0 || std::getenv("OMP_NUM_THREADS"))
+    return fit_options.threads;
+  return std::max(1, fit::resolve_threads(0) - 1);
+}
+
 std::shared_ptr<ReportLayerDrawing> start_report_layers(const PreparedScan& scan, const std::optional<LandmarkSet>& landmarks,
                                                         const fit::FitOptions& fit_options, TemplateSource model,
                                                         const ReportFigureOptions& options) {
-  if (!landmarks || !fit_options.use_landmarks)  // a landmark-free fit: no copy of the scan
+  if (!layers_drawn_beside_fit(landmarks, fit_options))  // a landmark-free fit: no copy of the scan
     return std::make_shared<ReportLayerDrawing>([] { return std::optional<ReportLayers>(); }, options);
   return std::make_shared<ReportLayerDrawing>(
       [scan_mm = scan.mesh_mm, units = scan.units, landmarks, fit_options, model = std::move(model),

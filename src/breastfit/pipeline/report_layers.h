@@ -128,6 +128,19 @@ class ReportLayerDrawing {
 /// wait for the template being loaded elsewhere, and throw that load's error.
 using TemplateSource = std::function<std::shared_ptr<const model::RiggedModel>()>;
 
+/// Whether a fit of `landmarks` with `fit_options` may be initialised from landmarks (at least
+/// 3 given and used), so that its report's scan layers can be drawn beside it: start_report_layers
+/// plans them then (its plan still gives none when fewer than 3 match the template's names).
+bool layers_drawn_beside_fit(const std::optional<LandmarkSet>& landmarks, const fit::FitOptions& fit_options);
+
+/// The fit's thread count when the report's layers are drawn beside it: the layer thread keeps a
+/// core busy to the end, so an automatic count (`fit_options.threads` 0 and no OMP_NUM_THREADS)
+/// leaves it that core (at least one fit thread); any count a person set is kept. One fit thread
+/// beside the layers measured 6-12 ms less wall time and 20-28 ms less CPU than two on 2 cores
+/// (docs/PERFORMANCE.md, Session 17); the results are the same bits with any count. Without
+/// layers beside the fit: `fit_options.threads` as it is.
+int fit_threads_beside_layers(const std::optional<LandmarkSet>& landmarks, const fit::FitOptions& fit_options);
+
 /// Starts drawing the layers of a registration on a thread of its own as soon as its scan is
 /// prepared (`scan`, as prepare_scan gave it: `register` starts them before the scan's index is
 /// built, prepare_target's `before_index`), from the `landmarks` as read and the fit's `fit_options`
