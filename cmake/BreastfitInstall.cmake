@@ -3,8 +3,8 @@
 #   P/lib/libbreastfit_<layer>.a             the layer libraries
 #   P/lib/cmake/breastfit/                   breastfitConfig.cmake, breastfitConfigVersion.cmake,
 #                                            breastfitTargets*.cmake, stb.cmake,
-#                                            libdeflate.cmake, import_library.cmake
-#   P/bin/breastfit                          the CLI (apps/cli/CMakeLists.txt)
+#                                            libdeflate.cmake, nettle.cmake, import_library.cmake
+#   P/bin/breastfit, P/bin/breastfit-serve   the CLI and the workstation it runs (apps/cli/CMakeLists.txt)
 #   P/share/breastfit/default_torso.glb      the shipped template
 # so that a consumer's find_package(breastfit) gives breastfit::breastfit and breastfit::<layer>.
 include(CMakePackageConfigHelpers)
@@ -25,5 +25,5 @@ write_basic_package_version_file(${PROJECT_BINARY_DIR}/breastfitConfigVersion.cm
                                  COMPATIBILITY SameMinorVersion)
 install(FILES ${PROJECT_BINARY_DIR}/breastfitConfig.cmake ${PROJECT_BINARY_DIR}/breastfitConfigVersion.cmake
               ${PROJECT_SOURCE_DIR}/cmake/deps/stb.cmake ${PROJECT_SOURCE_DIR}/cmake/deps/libdeflate.cmake
-              ${PROJECT_SOURCE_DIR}/cmake/deps/import_library.cmake
+              ${PROJECT_SOURCE_DIR}/cmake/deps/nettle.cmake ${PROJECT_SOURCE_DIR}/cmake/deps/import_library.cmake
         DESTINATION ${_breastfit_cmake_dir})

@@ -25,7 +25,7 @@ packages=(
   python3-numpy python3-scipy python3-matplotlib
   libcpp-httplib-dev chromium
   pybind11-dev python3-dev python3-pytest python3-distributed
-  zlib1g-dev libssl-dev libdeflate-dev
+  zlib1g-dev libssl-dev libdeflate-dev nettle-dev
 )
 
 # Node.js and npm for the workstation's page: Debian's, unless a node with npm is already there

@@ -1,53 +1,5 @@
 // breastfit: registers a rigged template torso to a 3D breast scan and transfers surgical drawings.
-#include <iostream>
-
-#include "breastfit/core/errors.h"
-#include "breastfit/core/heap_reuse.h"
-#include "command_support.h"
 #include "commands.h"
-#include "exit_codes.h"
+#include "run_app.h"
 
-namespace {
-
-/// A list option's captured default is "[]" when it starts empty: shown as no default at all
-/// (its description says what an empty list means).
-void hide_empty_list_defaults(CLI::App& app) {
-  for (CLI::Option* o : app.get_options())
-    if (o->get_default_str() == "[]") o->default_str("");
-  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) hide_empty_list_defaults(*sub);
-}
-
-}  // namespace
-
-int main(int argc, char** argv) {
-  using namespace breastfit::cli;
-  breastfit::keep_freed_heap_memory();  // large scans: reuse freed memory (docs/PERFORMANCE.md)
-  set_command_line(argc, argv);
-  CLI::App app{"breastfit: rigged-template registration of breast scans and transfer of surgical drawings"};
-  app.require_subcommand(1);
-  // Every option shows its default in --help ("--size INT=1024"); subcommands inherit this.
-  app.option_defaults()->always_capture_default();
-  app.set_version_flag("--version", "breastfit 0.1.0");
-  int exit_code = kExitOk;
-  for (RegisterFn reg : kCommands) reg(app, exit_code);
-  hide_empty_list_defaults(app);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? kExitOk : kExitUsage;
-  } catch (const breastfit::IoError& e) {
-    std::cerr << "breastfit: error: " << e.what() << "\n";
-    return kExitIoError;
-  } catch (const breastfit::InvalidInput& e) {
-    std::cerr << "breastfit: error: " << e.what() << "\n";
-    return kExitInvalidInput;
-  } catch (const std::bad_alloc&) {
-    std::cerr << "breastfit: error: out of memory\n";
-    return kExitFailure;
-  } catch (const std::exception& e) {
-    std::cerr << "breastfit: internal error: " << e.what() << "\n";
-    return kExitFailure;
-  }
-  return exit_code;
-}
+int main(int argc, char** argv) { return breastfit::cli::run_app(argc, argv, breastfit::cli::kCommands); }

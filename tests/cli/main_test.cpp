@@ -1,8 +1,9 @@
-// The command line as a whole (apps/cli/main.cpp and every subcommand it registers): each
+// The command line as a whole (apps/cli/run_app.cpp and every subcommand it registers): each
 // subcommand's --help is walked, found from `breastfit --help` itself (nested subcommands
 // included), so commands added later are covered without touching this test.
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <map>
 #include <utility>
 #include <set>
@@ -179,6 +180,25 @@ TEST(Main, SameFlagsMeanTheSameInEverySubcommand) {
   for (const auto& [short_name, longs] : long_of_short) {
     EXPECT_EQ(longs.size(), 1u) << short_name << " means " << testing::PrintToString(longs);
   }
+}
+
+// `breastfit` loads neither the workstation's HTTP library nor the TLS and compression libraries
+// it brings (~10 ms of CPU before main in every run); `breastfit serve` runs breastfit-serve,
+// which does, from the same directory.
+TEST(Main, TheWorkstationsLibrariesAreLoadedOnlyByTheWorkstation) {
+  std::string loaded;
+  // The dynamic loader lists what it would load, without running the program (as ldd does).
+  ASSERT_EQ(test::run_shell("LD_TRACE_LOADED_OBJECTS=1 '" + test::cli_path().string() + "'", &loaded), 0);
+  EXPECT_NE(loaded.find("libc.so"), std::string::npos) << loaded;
+  for (const char* lib : {"httplib", "libssl", "libcrypto", "brotli"}) EXPECT_EQ(loaded.find(lib), std::string::npos) << loaded;
+  const std::filesystem::path serve = test::cli_path().parent_path() / "breastfit-serve";
+  std::string serve_loaded;
+  ASSERT_EQ(test::run_shell("LD_TRACE_LOADED_OBJECTS=1 '" + serve.string() + "'", &serve_loaded), 0);
+  EXPECT_NE(serve_loaded.find("httplib"), std::string::npos) << serve_loaded;
+  std::string help;
+  EXPECT_EQ(test::run_cli("serve --help", &help), 0) << help;
+  EXPECT_NE(help.find("Usage: breastfit serve"), std::string::npos) << help;
+  EXPECT_NE(help.find("--workspace"), std::string::npos) << help;
 }
 
 }  // namespace

@@ -55,9 +55,6 @@ std::filesystem::path temp_dir() {
   return dir;
 }
 
-namespace {
-
-/// Runs `cmd` through /bin/sh, captures its stdout into `output`; returns the exit code.
 int run_shell(const std::string& cmd, std::string* output) {
   FILE* pipe = ::popen(cmd.c_str(), "r");
   if (!pipe) return -1;
@@ -69,8 +66,6 @@ int run_shell(const std::string& cmd, std::string* output) {
   if (output) *output = out;
   return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
-
-}  // namespace
 
 int run_cli(const std::string& args, std::string* output) {
   return run_shell("'" + cli_path().string() + "' " + args + " 2>&1", output);

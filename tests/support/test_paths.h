@@ -18,6 +18,9 @@ std::filesystem::path temp_dir();
 /// The bytes of a file ("" when it cannot be read).
 std::string file_bytes(const std::filesystem::path& path);
 
+/// Runs `cmd` through /bin/sh, captures its stdout into `output`; returns the exit code.
+int run_shell(const std::string& cmd, std::string* output = nullptr);
+
 /// Runs the CLI with the given argument string through /bin/sh; returns the exit code and
 /// captures stdout+stderr into `output`.
 int run_cli(const std::string& args, std::string* output = nullptr);

@@ -1,6 +1,6 @@
 #pragma once
 /// \file SHA-256 digests of files and bytes (the provenance of a registration: which scan,
-/// landmarks, template and config it read), computed by OpenSSL's libcrypto.
+/// landmarks, template and config it read), computed by Nettle.
 #include <filesystem>
 #include <string>
 #include <string_view>
