@@ -25,7 +25,6 @@
 #include "breastfit/fit/parallel_chunks.h"
 #include "breastfit/fit/pectoral_check.h"
 #include "breastfit/fit/pectoral_insertion.h"
-#include "breastfit/fit/pectoral_pair_check.h"
 #include "breastfit/fit/stage_minimizer.h"
 #include "breastfit/fit/problem.h"
 #include "breastfit/fit/shoulder_landmarks.h"
@@ -559,11 +558,9 @@ std::optional<SternumFrame> fitted_sternum_frame(const model::RiggedModel& model
 // Each given pectoral insertion against the same side's acromion and the fitted arm
 // (pectoral_check.h), in the fitted sternum's frame; skipped when that acromion is suspect itself
 // (beyond its prediction's or its pair's tolerance: the reference would be wrong).
-// `sides` gets each side's check where it ran (right, left), for the pair's check (check_insertion_pair).
 void check_insertions(const model::RiggedModel& model, const Points& V, const model::PoseParams& params,
                       const std::vector<LandmarkTarget>& given, const std::vector<Vec3>& predicted,
-                      const FitOptions& options, std::vector<std::optional<AnatomyCheck>>& out,
-                      std::optional<PectoralCheck> (&sides)[2]) {
+                      const FitOptions& options, std::vector<std::optional<AnatomyCheck>>& out) {
   const auto index_of = [&](const std::string& name) {
     return static_cast<size_t>(
         std::find_if(given.begin(), given.end(), [&](const LandmarkTarget& t) { return t.name == name; }) -
@@ -583,7 +580,6 @@ void check_insertions(const model::RiggedModel& model, const Points& V, const mo
     const PectoralCheck c =
         check_pectoral_insertion(*frame, *arm, given[i].position, given[a].position, options.landmark_check_mm);
     out[i] = AnatomyCheck{c.distance_mm, c.tolerance_mm, "where 'acromion_" + s + "' and the fitted arm put it"};
-    sides[side == 'R' ? 0 : 1] = c;
   }
 }
 
@@ -592,34 +588,6 @@ void keep_if_worse(std::optional<AnatomyCheck>& slot, AnatomyCheck c) {
   const auto beyond = [](const AnatomyCheck& a) { return a.distance_mm / a.tolerance_mm; };
   if (!(c.distance_mm > c.tolerance_mm)) return;
   if (!slot || !(slot->distance_mm > slot->tolerance_mm) || beyond(c) > beyond(*slot)) slot = std::move(c);
-}
-
-// Session 18 (docs/REGISTRATION.md): the two insertions' deviations from their arms' offsets
-// against each other (pectoral_pair_check.h), the blamed one flagged when q² + r_p² is beyond the
-// threshold — only when no landmark is flagged yet, by a check of its own or its prediction (`out`
-// holds every other check by now): a wrong notch, nipple or lowest breast point turns the fitted
-// sternum frames, and the two deviations with them; an insertion already flagged needs no partner
-// blamed with it.
-void check_insertion_pair(const std::vector<LandmarkTarget>& given, const std::vector<Vec3>& predicted,
-                          const FitOptions& options, const std::optional<PectoralCheck> (&sides)[2],
-                          std::vector<std::optional<AnatomyCheck>>& out) {
-  if (!sides[0] || !sides[1] || predicted.size() < given.size()) return;
-  const auto ratio = [&](size_t i) {
-    return (predicted[i] - given[i].position).norm() /
-           placed_landmark_tolerance_mm(given[i].name, options.landmark_check_mm);
-  };
-  for (size_t i = 0; i < given.size(); ++i)
-    if ((out[i] && out[i]->distance_mm > out[i]->tolerance_mm) || ratio(i) > 1.0) return;
-  const PectoralPairCheck c = check_pectoral_pair(*sides[0], *sides[1], options.landmark_check_mm);
-  const std::string blamed = c.right_blamed ? "pectoral_insertion_R" : "pectoral_insertion_L";
-  const std::string partner = c.right_blamed ? "pectoral_insertion_L" : "pectoral_insertion_R";
-  const LandmarkTarget* t = find_landmark(given, blamed);
-  if (!t) return;
-  const size_t i = static_cast<size_t>(t - given.data());
-  const double r = ratio(i);
-  keep_if_worse(out[i], AnatomyCheck{c.distance_mm, pectoral_pair_tolerance_mm(c, r),
-                                     "the offset from its arm that '" + partner + "' shows on the other side, with where "
-                                     "the other landmarks put it " + fmt(100 * r, 0) + " % of its tolerance off too"});
 }
 
 // The scan's outward vertex normals for the anatomy checks, as `const Points&` where a check takes
@@ -737,11 +705,9 @@ std::vector<std::optional<AnatomyCheck>> check_anatomy(const model::RiggedModel&
   }
   std::vector<std::optional<AnatomyCheck>> unblamed(given.size());
   check_pairs(given, options, out, unblamed);
-  std::optional<PectoralCheck> insertions[2];
-  check_insertions(model, V, params, given, predicted, options, out, insertions);
+  check_insertions(model, V, params, given, predicted, options, out);
   check_agreement(model, V, params, scan, axes, given, predicted, options, scan_N, out, unblamed);
   check_nipple_bumps(model, V, params, scan, given, predicted, options, scan_N, out);
-  check_insertion_pair(given, predicted, options, insertions, out);
   return out;
 }
 
