@@ -110,6 +110,37 @@ TEST(BilateralCheck, TheMemberNotBlamedIsLeftToTheCombinedCheckWithinTheToleranc
   EXPECT_TRUE(seen);
 }
 
+// Session 18: a pair beyond its tolerance blames the member whose prediction moved (3× its
+// partner's, at least 0.4 of its tolerance) over the proportions' guess; acromia and mid-axillary
+// points only, and only beyond the tolerance.
+TEST(BilateralCheck, APairBeyondItsToleranceBlamesTheMemberWhosePredictionMoved) {
+  BilateralCheck c;
+  c.right = "acromion_R";
+  c.left = "acromion_L";
+  c.distance_mm = 30.0;
+  c.tolerance_mm = 18.0;
+  c.blamed = "acromion_L";  // by proportions
+  EXPECT_EQ(blamed_by_prediction(c, 0.6, 0.1), "acromion_R");
+  EXPECT_EQ(blamed_by_prediction(c, 0.6, 0.25), "acromion_L");   // 2.4×: the proportions' blame stands
+  EXPECT_EQ(blamed_by_prediction(c, 0.35, 0.05), "acromion_L");  // below 0.4 of its tolerance
+  EXPECT_EQ(blamed_by_prediction(c, 0.1, 0.6), "acromion_L");
+  c.blamed = "acromion_R";
+  EXPECT_EQ(blamed_by_prediction(c, 0.1, 0.6), "acromion_L");
+  c.right = "midaxillary_R";
+  c.left = "midaxillary_L";
+  c.blamed = "midaxillary_L";
+  EXPECT_EQ(blamed_by_prediction(c, 0.7, 0.1), "midaxillary_R");
+  c.right = "lowest_breast_R";  // their prediction does not tell the two apart
+  c.left = "lowest_breast_L";
+  c.blamed = "lowest_breast_L";
+  EXPECT_EQ(blamed_by_prediction(c, 0.9, 0.1), "lowest_breast_L");
+  c.right = "acromion_R";
+  c.left = "acromion_L";
+  c.blamed = "acromion_L";
+  c.distance_mm = 15.0;  // within the tolerance: nobody is flagged by the pair, the blame is left as it is
+  EXPECT_EQ(blamed_by_prediction(c, 0.9, 0.1), "acromion_L");
+}
+
 TEST(BilateralCheck, NeedsTheSternumAndTwoOtherPairs) {
   const synth::SynthCase& c = synth_case(synth::PoseType::Standing);
   auto landmarks = truth_targets(c);

@@ -181,6 +181,40 @@ TEST(LandmarkPrediction, APairMemberNotBlamedIsCheckedWithTheOthers) {
                            << " mm, anatomy " << ch->anatomy_distance_mm << " mm";
 }
 
+// An acromion walked 20 mm along the skin puts its pair beyond the tolerance, and the proportions
+// blame its partner; the walked one's prediction moved, its partner's did not, so the pair's check
+// goes to the walked one (bilateral_check.h blamed_by_prediction; without it the partner is flagged
+// and the walked one is not). The template-made standing torso of seed 3 in the scanner's axes,
+// annotation noise 1 mm (nothing flagged as given: APairMemberNotBlamedIsCheckedWithTheOthers).
+TEST(LandmarkPrediction, APairBeyondItsToleranceBlamesTheMemberWhosePredictionMoved) {
+  const auto& model = *test::default_template();
+  synth::SynthOptions so;
+  so.seed = 3;
+  so.misalign_rotation_deg = 0.0;
+  so.misalign_translation_m = 0.0;
+  so.landmark_noise_mm = 1.0;
+  const synth::SynthCase c = synth::make_case(model, so);
+  ScanTarget scan(c.scan);
+  auto lms = given(c);
+  const size_t k = 2;
+  ASSERT_EQ(lms[k].first, "acromion_R");
+  lms[k].second = moved_along_skin(scan, lms[k].second, 20.0, M_PI);
+  const FitOptions o;
+  const auto pairs = check_bilateral_pairs(match_landmarks(model, lms), o.landmark_check_mm);
+  const auto acromia = std::find_if(pairs.begin(), pairs.end(), [](const BilateralCheck& b) { return b.right == "acromion_R"; });
+  ASSERT_NE(acromia, pairs.end());
+  ASSERT_TRUE(acromia->flagged()) << "the pair is within its tolerance: no test of the rule";
+  ASSERT_EQ(acromia->blamed, "acromion_L") << "the proportions blame the walked one already: no test of the rule";
+  const FitResult moved = register_template(model, scan, match_landmarks(model, lms), o);
+  const LandmarkCheck* walked = find(moved.summary, "acromion_R");
+  const LandmarkCheck* partner = find(moved.summary, "acromion_L");
+  ASSERT_NE(walked, nullptr);
+  ASSERT_NE(partner, nullptr);
+  EXPECT_TRUE(walked->flagged) << "predicted " << walked->predicted_distance_mm << " mm, anatomy "
+                               << walked->anatomy_distance_mm << " mm";
+  EXPECT_FALSE(partner->flagged) << partner->anatomy;
+}
+
 // The prediction of a landmark left out moves the model back towards where the others put it: a
 // landmark walked 40 mm is predicted farther from where it was placed than the fit leaves it.
 TEST(LandmarkPrediction, LeavingALandmarkOutMovesTheModelBack) {

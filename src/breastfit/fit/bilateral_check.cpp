@@ -84,6 +84,14 @@ std::optional<std::string> unblamed_member(const BilateralCheck& check) {
   return check.blamed == check.right ? check.left : check.right;
 }
 
+std::string blamed_by_prediction(const BilateralCheck& check, double right_ratio, double left_ratio) {
+  if (!check.flagged() || !(check.right.rfind("acromion_", 0) == 0 || check.right.rfind("midaxillary_", 0) == 0))
+    return check.blamed;
+  if (right_ratio >= kBlameByPredictionMin && right_ratio >= kBlameByPredictionRatio * left_ratio) return check.right;
+  if (left_ratio >= kBlameByPredictionMin && left_ratio >= kBlameByPredictionRatio * right_ratio) return check.left;
+  return check.blamed;
+}
+
 std::vector<BilateralCheck> check_bilateral_pairs(const std::vector<LandmarkTarget>& landmarks,
                                                   double landmark_check_mm) {
   std::vector<BilateralCheck> out;

@@ -519,15 +519,24 @@ void relinearize_suspects(Problem& problem, const model::PoseParams& params, con
 // Each bilateral pair against its mirror image (bilateral_check.h), the check kept by the member
 // it blames; the same asymmetry in `unblamed` for the member the pair's check leaves to the
 // combined check only (bilateral_check.h unblamed_member: the other one of a pair within its
-// tolerance; check_agreement, session 16).
-void check_pairs(const std::vector<LandmarkTarget>& given, const FitOptions& options,
-                 std::vector<std::optional<AnatomyCheck>>& out, std::vector<std::optional<AnatomyCheck>>& unblamed) {
+// tolerance; check_agreement, session 16). A pair beyond its tolerance blames by the members'
+// predictions where they tell (bilateral_check.h blamed_by_prediction, session 18).
+void check_pairs(const std::vector<LandmarkTarget>& given, const std::vector<Vec3>& predicted,
+                 const FitOptions& options, std::vector<std::optional<AnatomyCheck>>& out,
+                 std::vector<std::optional<AnatomyCheck>>& unblamed) {
   const auto index_of = [&](const std::string& name) {
     return static_cast<size_t>(
         std::find_if(given.begin(), given.end(), [&](const LandmarkTarget& t) { return t.name == name; }) -
         given.begin());
   };
-  for (const BilateralCheck& c : check_bilateral_pairs(given, options.landmark_check_mm)) {
+  const auto ratio = [&](const std::string& name) {
+    const size_t i = index_of(name);
+    return i < predicted.size() ? (predicted[i] - given[i].position).norm() /
+                                      placed_landmark_tolerance_mm(name, options.landmark_check_mm)
+                                : 0.0;
+  };
+  for (BilateralCheck c : check_bilateral_pairs(given, options.landmark_check_mm)) {
+    c.blamed = blamed_by_prediction(c, ratio(c.right), ratio(c.left));
     const std::string& partner = c.blamed == c.right ? c.left : c.right;
     const size_t i = index_of(c.blamed);
     if (i < out.size() && !out[i])
@@ -704,7 +713,7 @@ std::vector<std::optional<AnatomyCheck>> check_anatomy(const model::RiggedModel&
     }
   }
   std::vector<std::optional<AnatomyCheck>> unblamed(given.size());
-  check_pairs(given, options, out, unblamed);
+  check_pairs(given, predicted, options, out, unblamed);
   check_insertions(model, V, params, given, predicted, options, out);
   check_agreement(model, V, params, scan, axes, given, predicted, options, scan_N, out, unblamed);
   check_nipple_bumps(model, V, params, scan, given, predicted, options, scan_N, out);
