@@ -420,6 +420,9 @@ void Rasterizer::draw_mesh(const Points& V, const Triangles& F, const Points& N,
     };
     const std::int64_t step_lo = static_cast<std::int64_t>(ss) << kSubpixelBits;
     const std::int64_t half_lo = static_cast<std::int64_t>(ss) << (kSubpixelBits - 1);
+    // Per triangle (in drawing order), its box of samples for the refinement, which then reads
+    // the corners of only the triangles that reach a marked pixel (x0 > x1: no sample).
+    std::vector<std::array<std::uint16_t, 4>> tri_box(order.size(), {1, 0, 0, 0});
     size_t k = 0;
     for (size_t b = 0; b < n_buckets; ++b) {
       if (b == static_cast<size_t>(tiles)) fill_far([&](size_t p) { return depth_lo[p]; });
@@ -434,6 +437,8 @@ void Rasterizer::draw_mesh(const Points& V, const Triangles& F, const Points& N,
         if (hx.lo <= hx.hi && hy.lo <= hy.hi) {  // (a triangle can hold a pixel's centre and no sample's)
           Box& box = bucket_box[b];
           box = {std::min(box.x0, hx.lo), std::min(box.y0, hy.lo), std::max(box.x1, hx.hi), std::max(box.y1, hy.hi)};
+          tri_box[k] = {static_cast<std::uint16_t>(hx.lo), static_cast<std::uint16_t>(hy.lo),
+                        static_cast<std::uint16_t>(hx.hi), static_cast<std::uint16_t>(hy.hi)};
         }
         const Span xs = pixel_span(min_x / ss, max_x / ss, W), ys = pixel_span(min_y / ss, max_y / ss, H);
         if (xs.lo > xs.hi || ys.lo > ys.hi) continue;
@@ -471,7 +476,11 @@ void Rasterizer::draw_mesh(const Points& V, const Triangles& F, const Points& N,
     }
     if (lx1 < 0) return;  // nothing drawn
     // The pixels to refine: both pixels of each 8-neighbour pair that differ in coverage, in
-    // facing, or in depth by more than kFlatPixels output pixels (as the full path's flat test).
+    // facing, or in depth by more than kEdgeDepthPixels output pixels: an occluding edge, not the
+    // scan's noise or a steep slope (with 2 pixels, a third of a side figure's surface was
+    // marked, mostly noise; the silhouette of a steep slope is marked by its coverage).
+    constexpr double kEdgeDepthPixels = 8.0;
+    const double edge_depth = kEdgeDepthPixels * camera_.world_per_pixel(0.0, options_.height);
     const int mx0 = std::max(0, lx0 - 1), mx1 = std::min(W - 1, lx1 + 1);
     const int my0 = std::max(0, ly0 - 1), my1 = std::min(H - 1, ly1 + 1);
     std::vector<std::uint8_t> mark(n_pixels, 0);
@@ -480,7 +489,7 @@ void Rasterizer::draw_mesh(const Points& V, const Triangles& F, const Points& N,
       if ((a < 0) != (b < 0)) return true;
       if (a < 0) return false;
       return tri_front[static_cast<size_t>(a)] != tri_front[static_cast<size_t>(b)] ||
-             std::abs(depth_lo[p] - depth_lo[q]) > flat_depth_ortho;
+             std::abs(depth_lo[p] - depth_lo[q]) > edge_depth;
     };
     auto pair = [&](size_t p, size_t q) {
       if (differ(p, q)) mark[p] = mark[q] = 1;
@@ -532,13 +541,12 @@ void Rasterizer::draw_mesh(const Points& V, const Triangles& F, const Points& N,
       const Box& box = bucket_box[b];
       if (begin == end || box.x1 < 0 || !marked_in(box.x0 / ss, box.y0 / ss, box.x1 / ss, box.y1 / ss)) continue;
       for (size_t kk = begin; kk < end; ++kk) {
+        const std::array<std::uint16_t, 4>& tb = tri_box[kk];
+        if (tb[0] > tb[2]) continue;
+        const int qx0 = tb[0] / ss, qy0 = tb[1] / ss, qx1 = tb[2] / ss, qy1 = tb[3] / ss;
+        if (!marked_in(qx0, qy0, qx1, qy1)) continue;
         const std::int32_t t = order[kk];
         const Projected &p0 = P[F(t, 0)], &p1 = P[F(t, 1)], &p2 = P[F(t, 2)];
-        const Span hx = pixel_span(std::min({p0.x, p1.x, p2.x}), std::max({p0.x, p1.x, p2.x}), w_);
-        const Span hy = pixel_span(std::min({p0.y, p1.y, p2.y}), std::max({p0.y, p1.y, p2.y}), h_);
-        if (hx.lo > hx.hi || hy.lo > hy.hi) continue;
-        const int qx0 = hx.lo / ss, qx1 = hx.hi / ss, qy0 = hy.lo / ss, qy1 = hy.hi / ss;
-        if (!marked_in(qx0, qy0, qx1, qy1)) continue;
         if (kk >= n_front && hidden_lo(qx0, qy0, qx1, qy1, std::min({p0.depth, p1.depth, p2.depth}))) continue;
         const FixedPoint f0 = to_fixed(p0), f1 = to_fixed(p1), f2 = to_fixed(p2);
         const std::int64_t fixed_area = (f1.x - f0.x) * (f2.y - f0.y) - (f1.y - f0.y) * (f2.x - f0.x);
