@@ -137,12 +137,17 @@ bool fixed_range(const Projected& p) { return std::abs(p.x) < kFixedLimit && std
 struct FixedEdge {
   std::int64_t at_origin, step_x, step_y;
 };
-FixedEdge fixed_edge(const FixedPoint& a, const FixedPoint& b, int x0, int y0, std::int64_t sign) {
+/// The same at the fixed-point position (px, py), stepping by `step` (fixed point) in x and in y.
+FixedEdge fixed_edge_at(const FixedPoint& a, const FixedPoint& b, std::int64_t px, std::int64_t py, std::int64_t step,
+                        std::int64_t sign) {
   const std::int64_t ex = b.x - a.x, ey = b.y - a.y;
+  return {sign * (ex * (py - a.y) - ey * (px - a.x)), sign * (-ey * step), sign * (ex * step)};
+}
+FixedEdge fixed_edge(const FixedPoint& a, const FixedPoint& b, int x0, int y0, std::int64_t sign) {
   const std::int64_t half = 1 << (kSubpixelBits - 1);
   const std::int64_t px = (static_cast<std::int64_t>(x0) << kSubpixelBits) + half;
   const std::int64_t py = (static_cast<std::int64_t>(y0) << kSubpixelBits) + half;
-  return {sign * (ex * (py - a.y) - ey * (px - a.x)), sign * (-ey << kSubpixelBits), sign * (ex << kSubpixelBits)};
+  return fixed_edge_at(a, b, px, py, std::int64_t{1} << kSubpixelBits, sign);
 }
 
 }  // namespace
@@ -194,6 +199,8 @@ void Rasterizer::draw_mesh(const Points& V, const Triangles& F, const Points& N,
   if (F.rows() > 0 && (F.minCoeff() < 0 || F.maxCoeff() >= nv))
     throw InvalidInput("draw_mesh: a triangle index is outside [0, " + std::to_string(nv) + ")");
   if (nv == 0) return;
+  const bool first_surface = !surface_drawn_;
+  surface_drawn_ = true;
 
   const Lighting light = make_lighting(camera_);
   const bool perspective = camera_.projection == Projection::Perspective;
@@ -247,8 +254,6 @@ void Rasterizer::draw_mesh(const Points& V, const Triangles& F, const Points& N,
   // up for every sample's winner, and 16-byte records made that lookup a cache miss).
   std::vector<double> tri_area(static_cast<size_t>(F.rows()), 0.0);
   std::vector<std::uint8_t> tri_front(static_cast<size_t>(F.rows()), 0);
-  std::vector<std::int32_t> winner(static_cast<size_t>(w_) * h_, -1);
-  int bx0 = w_, by0 = h_, bx1 = -1, by1 = -1;  // a box around the pixels won by this call
   // Triangles in screen tiles of 32 × 32 pixels (row-major; stable within a tile), so that the
   // depth and winner buffers are walked with locality whatever the mesh's triangle order; the
   // triangles facing the camera first, then the back faces (the inside of the far wall of the
@@ -259,6 +264,7 @@ void Rasterizer::draw_mesh(const Points& V, const Triangles& F, const Points& N,
   const int tiles = tiles_x * tiles_y;
   std::vector<std::int32_t> bucket_of(static_cast<size_t>(F.rows()), -1);  // -1: nothing to draw
   std::vector<std::int32_t> bucket_start(2 * static_cast<size_t>(tiles) + 1, 0);
+  bool all_fixed = true;  // every drawn corner in the fixed-point range
   for (Eigen::Index t = 0; t < F.rows(); ++t) {
     const Index i0 = F(t, 0), i1 = F(t, 1), i2 = F(t, 2);
     const Projected &p0 = P[i0], &p1 = P[i1], &p2 = P[i2];
@@ -272,6 +278,7 @@ void Rasterizer::draw_mesh(const Points& V, const Triangles& F, const Points& N,
     const bool front = area < 0;
     tri_area[static_cast<size_t>(t)] = area;
     tri_front[static_cast<size_t>(t)] = front;
+    all_fixed = all_fixed && fixed_range(p0) && fixed_range(p1) && fixed_range(p2);
     const double cx = (p0.x + p1.x + p2.x) / 3.0, cy = (p0.y + p1.y + p2.y) / 3.0;
     const int tx = std::clamp(pixel_index(cx), 0, w_ - 1) / kTile, ty = std::clamp(pixel_index(cy), 0, h_ - 1) / kTile;
     const int bucket = (front ? 0 : tiles) + ty * tiles_x + tx;
@@ -321,6 +328,298 @@ void Rasterizer::draw_mesh(const Points& V, const Triangles& F, const Points& N,
     return true;
   };
 
+  const int ss = options_.supersample;
+  // The first surface drawn (the buffers hold nothing yet), orthographic, in the fixed-point range.
+  const bool adaptive = options_.adaptive_supersample && ss > 1 && !perspective && first_surface && all_fixed;
+
+  // Depths of one output pixel's samples within kFlatPixels output pixels of each other: the
+  // surface does not jump (no silhouette or fold) inside it.
+  constexpr double kFlatPixels = 2.0;
+  const double flat_depth_ortho = kFlatPixels * camera_.world_per_pixel(0.0, options_.height);  // orthographic: any depth
+
+  // The surface at the image point (px, py) (a sample's centre is (x + 0.5, y + 0.5)) on
+  // triangle t: its unit normal (facing the viewer) and base colour.
+  struct Sample {
+    Vec3 n, base;
+  };
+  auto sample_at = [&](double px, double py, std::int32_t t) -> Sample {
+    const bool front = tri_front[static_cast<size_t>(t)] != 0;
+    const Index i0 = F(t, 0), i1 = F(t, 1), i2 = F(t, 2);
+    const Projected &p0 = P[i0], &p1 = P[i1], &p2 = P[i2];
+    const double inv_area = 1.0 / tri_area[static_cast<size_t>(t)];
+    double b0 = edge(p1, p2, px, py) * inv_area;
+    double b1 = edge(p2, p0, px, py) * inv_area;
+    double b2 = edge(p0, p1, px, py) * inv_area;
+    if (perspective) {  // perspective-correct barycentrics (orthographic: they sum to 1 already)
+      b0 /= p0.depth;
+      b1 /= p1.depth;
+      b2 /= p2.depth;
+      const double sum = b0 + b1 + b2;
+      b0 /= sum;
+      b1 /= sum;
+      b2 /= sum;
+    }
+    Vec3 n = Vec3::Zero();
+    if (style.smooth) n = b0 * Vec3(vn.row(i0)) + b1 * Vec3(vn.row(i1)) + b2 * Vec3(vn.row(i2));
+    if (!(n.squaredNorm() > 0)) {  // flat shading, or no usable vertex normals: the face's normal
+      const Vec3 v0 = V.row(i0);
+      n = (Vec3(V.row(i1)) - v0).cross(Vec3(V.row(i2)) - v0);
+      if (!(n.squaredNorm() > 0)) n = front ? Vec3(-f) : Vec3(f);  // degenerate in 3D
+    }
+    n.normalize();
+    if (!front) n = -n;
+    // Interpolated normals may turn away at silhouettes; keep them facing the viewer.
+    const Vec3 view = perspective ? Vec3((camera_.eye - (b0 * Vec3(V.row(i0)) + b1 * Vec3(V.row(i1)) +
+                                                           b2 * Vec3(V.row(i2))))
+                                             .normalized())
+                                  : Vec3(-f);
+    if (n.dot(view) < 0) n = (n - 1.0 * n.dot(view) * view).normalized();
+    return {n, b0 * base_colour(i0) + b1 * base_colour(i1) + b2 * base_colour(i2)};
+  };
+  auto shade_sample = [&](int x, int y, std::int32_t t) {
+    const Sample s = sample_at(x + 0.5, y + 0.5, t);
+    return scale_rgb(shade(s.base, s.n, tri_front[static_cast<size_t>(t)] != 0, light, style));
+  };
+
+  if (adaptive) {
+    // Supersampling only where a pixel needs it (RasterOptions::adaptive_supersample): pass 1 at
+    // one sample per output pixel (its centre); the pixels next to a change of coverage, of facing
+    // or a jump of depth (silhouettes, folds, the scan's holes and borders: 8-neighbourhood) are
+    // marked and pass 1 runs again over their ss × ss samples only; pass 2 lights an unmarked
+    // pixel once, at its centre, and shades a marked one sample by sample (once when a single
+    // triangle covers all of it). The supersampled buffers are filled as the full path fills
+    // them (an unmarked pixel's colour and depth in all its samples), so the overlays and
+    // resolve() see no difference.
+    const int W = options_.width, H = options_.height;
+    const size_t n_pixels = static_cast<size_t>(W) * H;
+    std::vector<float> depth_lo(n_pixels, kEmpty);
+    std::vector<std::int32_t> winner_lo(n_pixels, -1);
+    int lx0 = W, ly0 = H, lx1 = -1, ly1 = -1;  // a box around the pixels won
+    // Per bucket, a box (in samples) around its triangles: the refinement skips the buckets that
+    // reach no marked pixel.
+    struct Box {
+      int x0, y0, x1, y1;
+    };
+    const size_t n_buckets = 2 * static_cast<size_t>(tiles);
+    std::vector<Box> bucket_box(n_buckets, Box{w_, h_, -1, -1});
+    // The coarse depth test of the back faces, by blocks of kBlock × kBlock output pixels.
+    const int lblocks_x = (W + kBlock - 1) / kBlock, lblocks_y = (H + kBlock - 1) / kBlock;
+    std::vector<float> far_lo;
+    auto fill_far = [&](auto&& pixel_far) {
+      far_lo.assign(static_cast<size_t>(lblocks_x) * lblocks_y, 0.0f);
+      for (int y = 0; y < H; ++y) {
+        float* out = &far_lo[static_cast<size_t>(y / kBlock) * lblocks_x];
+        for (int x = 0; x < W; ++x) out[x / kBlock] = std::max(out[x / kBlock], pixel_far(static_cast<size_t>(y) * W + x));
+      }
+    };
+    auto hidden_lo = [&](int x0, int y0, int x1, int y1, double nearest) {
+      for (int by = y0 / kBlock; by <= y1 / kBlock; ++by)
+        for (int bx = x0 / kBlock; bx <= x1 / kBlock; ++bx)
+          if (nearest < far_lo[static_cast<size_t>(by) * lblocks_x + bx]) return false;
+      return true;
+    };
+    const std::int64_t step_lo = static_cast<std::int64_t>(ss) << kSubpixelBits;
+    const std::int64_t half_lo = static_cast<std::int64_t>(ss) << (kSubpixelBits - 1);
+    // Per triangle (in drawing order), its box of samples for the refinement, which then reads
+    // the corners of only the triangles that reach a marked pixel (x0 > x1: no sample).
+    std::vector<std::array<std::uint16_t, 4>> tri_box(order.size(), {1, 0, 0, 0});
+    size_t k = 0;
+    for (size_t b = 0; b < n_buckets; ++b) {
+      if (b == static_cast<size_t>(tiles)) fill_far([&](size_t p) { return depth_lo[p]; });
+      for (const size_t end = static_cast<size_t>(bucket_start[b]); k < end; ++k) {
+        if (k % kGather == 0) gather(k);
+        const std::int32_t t = order[k];
+        const std::array<Projected, 3>& c = corners[k % kGather];
+        const Projected &p0 = c[0], &p1 = c[1], &p2 = c[2];
+        const double min_x = std::min({p0.x, p1.x, p2.x}), max_x = std::max({p0.x, p1.x, p2.x});
+        const double min_y = std::min({p0.y, p1.y, p2.y}), max_y = std::max({p0.y, p1.y, p2.y});
+        const Span hx = pixel_span(min_x, max_x, w_), hy = pixel_span(min_y, max_y, h_);
+        if (hx.lo <= hx.hi && hy.lo <= hy.hi) {  // (a triangle can hold a pixel's centre and no sample's)
+          Box& box = bucket_box[b];
+          box = {std::min(box.x0, hx.lo), std::min(box.y0, hy.lo), std::max(box.x1, hx.hi), std::max(box.y1, hy.hi)};
+          tri_box[k] = {static_cast<std::uint16_t>(hx.lo), static_cast<std::uint16_t>(hy.lo),
+                        static_cast<std::uint16_t>(hx.hi), static_cast<std::uint16_t>(hy.hi)};
+        }
+        const Span xs = pixel_span(min_x / ss, max_x / ss, W), ys = pixel_span(min_y / ss, max_y / ss, H);
+        if (xs.lo > xs.hi || ys.lo > ys.hi) continue;
+        if (k >= n_front && hidden_lo(xs.lo, ys.lo, xs.hi, ys.hi, std::min({p0.depth, p1.depth, p2.depth}))) continue;
+        const FixedPoint f0 = to_fixed(p0), f1 = to_fixed(p1), f2 = to_fixed(p2);
+        const std::int64_t fixed_area = (f1.x - f0.x) * (f2.y - f0.y) - (f1.y - f0.y) * (f2.x - f0.x);
+        if (fixed_area == 0) continue;
+        const std::int64_t sign = fixed_area > 0 ? 1 : -1;
+        const std::int64_t px = xs.lo * step_lo + half_lo, py = ys.lo * step_lo + half_lo;
+        const FixedEdge g0 = fixed_edge_at(f1, f2, px, py, step_lo, sign), g1 = fixed_edge_at(f2, f0, px, py, step_lo, sign),
+                        g2 = fixed_edge_at(f0, f1, px, py, step_lo, sign);
+        const Linear ez = triangle_planes(p0, p1, p2, tri_area[static_cast<size_t>(t)]).depth;
+        const double ez_dx = ez.dx * ss;
+        std::int64_t r0 = g0.at_origin, r1 = g1.at_origin, r2 = g2.at_origin;
+        bool wrote = false;
+        for (int y = ys.lo; y <= ys.hi; ++y, r0 += g0.step_y, r1 += g1.step_y, r2 += g2.step_y) {
+          std::int64_t a0 = r0, a1 = r1, a2 = r2;
+          double az = ez.at(ss * (xs.lo + 0.5), ss * (y + 0.5));
+          float* depth_row = &depth_lo[static_cast<size_t>(y) * W];
+          std::int32_t* winner_row = &winner_lo[static_cast<size_t>(y) * W];
+          for (int x = xs.lo; x <= xs.hi; ++x, a0 += g0.step_x, a1 += g1.step_x, a2 += g2.step_x, az += ez_dx) {
+            if ((a0 | a1 | a2) < 0 || !(az < depth_row[x])) continue;
+            depth_row[x] = static_cast<float>(az);
+            winner_row[x] = t;
+            wrote = true;
+          }
+        }
+        if (wrote) {
+          lx0 = std::min(lx0, xs.lo);
+          lx1 = std::max(lx1, xs.hi);
+          ly0 = std::min(ly0, ys.lo);
+          ly1 = std::max(ly1, ys.hi);
+        }
+      }
+    }
+    if (lx1 < 0) return;  // nothing drawn
+    // The pixels to refine: both pixels of each 8-neighbour pair that differ in coverage, in
+    // facing, or in depth by more than kEdgeDepthPixels output pixels: an occluding edge, not the
+    // scan's noise or a steep slope (with 2 pixels, a third of a side figure's surface was
+    // marked, mostly noise; the silhouette of a steep slope is marked by its coverage).
+    constexpr double kEdgeDepthPixels = 8.0;
+    const double edge_depth = kEdgeDepthPixels * camera_.world_per_pixel(0.0, options_.height);
+    const int mx0 = std::max(0, lx0 - 1), mx1 = std::min(W - 1, lx1 + 1);
+    const int my0 = std::max(0, ly0 - 1), my1 = std::min(H - 1, ly1 + 1);
+    std::vector<std::uint8_t> mark(n_pixels, 0);
+    auto differ = [&](size_t p, size_t q) {
+      const std::int32_t a = winner_lo[p], b = winner_lo[q];
+      if ((a < 0) != (b < 0)) return true;
+      if (a < 0) return false;
+      return tri_front[static_cast<size_t>(a)] != tri_front[static_cast<size_t>(b)] ||
+             std::abs(depth_lo[p] - depth_lo[q]) > edge_depth;
+    };
+    auto pair = [&](size_t p, size_t q) {
+      if (differ(p, q)) mark[p] = mark[q] = 1;
+    };
+    for (int y = my0; y <= my1; ++y)
+      for (int x = mx0; x <= mx1; ++x) {
+        const size_t p = static_cast<size_t>(y) * W + x;
+        if (x < mx1) pair(p, p + 1);
+        if (y == my1) continue;
+        pair(p, p + W);
+        if (x < mx1) pair(p, p + W + 1);
+        if (x > mx0) pair(p, p + W - 1);
+      }
+    // Marked pixels numbered in raster order (their samples' slots) and counted in a summed-area
+    // table (how many in a box: four lookups).
+    std::vector<std::int32_t> slot_of(n_pixels, -1);
+    std::vector<std::int32_t> sat(static_cast<size_t>(W + 1) * (H + 1), 0);
+    std::int32_t n_marked = 0;
+    for (int y = 0; y < H; ++y) {
+      std::int32_t row = 0;
+      for (int x = 0; x < W; ++x) {
+        const size_t p = static_cast<size_t>(y) * W + x;
+        if (mark[p]) slot_of[p] = n_marked++;
+        row += mark[p];
+        sat[static_cast<size_t>(y + 1) * (W + 1) + x + 1] = sat[static_cast<size_t>(y) * (W + 1) + x + 1] + row;
+      }
+    }
+    mark = {};
+    auto marked_in = [&](int x0, int y0, int x1, int y1) {  // output pixels, inclusive
+      const size_t r0 = static_cast<size_t>(y0) * (W + 1), r1 = static_cast<size_t>(y1 + 1) * (W + 1);
+      return sat[r1 + x1 + 1] - sat[r1 + x0] - sat[r0 + x1 + 1] + sat[r0 + x0] > 0;
+    };
+    const int s2 = ss * ss;
+    std::vector<float> depth_s(static_cast<size_t>(n_marked) * s2, kEmpty);
+    std::vector<std::int32_t> winner_s(static_cast<size_t>(n_marked) * s2, -1);
+    k = 0;
+    for (size_t b = 0; b < n_buckets; ++b) {
+      const size_t begin = k, end = static_cast<size_t>(bucket_start[b]);
+      k = end;
+      if (n_marked == 0) break;
+      if (b == static_cast<size_t>(tiles))  // a marked pixel's farthest sample, an unmarked pixel's depth
+        fill_far([&](size_t p) {
+          const std::int32_t s = slot_of[p];
+          if (s < 0) return depth_lo[p];
+          float far = 0.0f;
+          for (int j = 0; j < s2; ++j) far = std::max(far, depth_s[static_cast<size_t>(s) * s2 + j]);
+          return far;
+        });
+      const Box& box = bucket_box[b];
+      if (begin == end || box.x1 < 0 || !marked_in(box.x0 / ss, box.y0 / ss, box.x1 / ss, box.y1 / ss)) continue;
+      for (size_t kk = begin; kk < end; ++kk) {
+        const std::array<std::uint16_t, 4>& tb = tri_box[kk];
+        if (tb[0] > tb[2]) continue;
+        const int qx0 = tb[0] / ss, qy0 = tb[1] / ss, qx1 = tb[2] / ss, qy1 = tb[3] / ss;
+        if (!marked_in(qx0, qy0, qx1, qy1)) continue;
+        const std::int32_t t = order[kk];
+        const Projected &p0 = P[F(t, 0)], &p1 = P[F(t, 1)], &p2 = P[F(t, 2)];
+        if (kk >= n_front && hidden_lo(qx0, qy0, qx1, qy1, std::min({p0.depth, p1.depth, p2.depth}))) continue;
+        const FixedPoint f0 = to_fixed(p0), f1 = to_fixed(p1), f2 = to_fixed(p2);
+        const std::int64_t fixed_area = (f1.x - f0.x) * (f2.y - f0.y) - (f1.y - f0.y) * (f2.x - f0.x);
+        if (fixed_area == 0) continue;
+        const std::int64_t sign = fixed_area > 0 ? 1 : -1;
+        const int sx0 = qx0 * ss, sy0 = qy0 * ss;  // the samples' origin
+        const FixedEdge g0 = fixed_edge(f1, f2, sx0, sy0, sign), g1 = fixed_edge(f2, f0, sx0, sy0, sign),
+                        g2 = fixed_edge(f0, f1, sx0, sy0, sign);
+        const Linear ez = triangle_planes(p0, p1, p2, tri_area[static_cast<size_t>(t)]).depth;
+        for (int ly = qy0; ly <= qy1; ++ly)
+          for (int lx = qx0; lx <= qx1; ++lx) {
+            const std::int32_t s = slot_of[static_cast<size_t>(ly) * W + lx];
+            if (s < 0) continue;
+            for (int dy = 0; dy < ss; ++dy) {
+              const int y = ly * ss + dy;
+              const std::int64_t oy = y - sy0;
+              for (int dx = 0; dx < ss; ++dx) {
+                const int x = lx * ss + dx;
+                const std::int64_t ox = x - sx0;
+                const std::int64_t a0 = g0.at_origin + ox * g0.step_x + oy * g0.step_y;
+                const std::int64_t a1 = g1.at_origin + ox * g1.step_x + oy * g1.step_y;
+                const std::int64_t a2 = g2.at_origin + ox * g2.step_x + oy * g2.step_y;
+                if ((a0 | a1 | a2) < 0) continue;
+                const double depth = ez.at(x + 0.5, y + 0.5);
+                const size_t j = static_cast<size_t>(s) * s2 + dy * ss + dx;
+                if (!(depth < depth_s[j])) continue;
+                depth_s[j] = static_cast<float>(depth);
+                winner_s[j] = t;
+              }
+            }
+          }
+      }
+    }
+    // Pass 2: the samples' colours and depths.
+    for (int ly = my0; ly <= my1; ++ly)
+      for (int lx = mx0; lx <= mx1; ++lx) {
+        const size_t p = static_cast<size_t>(ly) * W + lx;
+        const std::int32_t s = slot_of[p];
+        const int x0 = lx * ss, y0 = ly * ss;
+        if (s < 0) {
+          const std::int32_t t = winner_lo[p];
+          if (t < 0) continue;
+          const Sample m = sample_at(x0 + 0.5 * ss, y0 + 0.5 * ss, t);
+          const Rgb c = scale_rgb(shade(m.base, m.n, tri_front[static_cast<size_t>(t)] != 0, light, style));
+          for (int dy = 0; dy < ss; ++dy)
+            for (int dx = 0; dx < ss; ++dx) {
+              colour_.set(x0 + dx, y0 + dy, c);
+              depth_[static_cast<size_t>(y0 + dy) * w_ + x0 + dx] = depth_lo[p];
+            }
+          continue;
+        }
+        const std::int32_t* ws = &winner_s[static_cast<size_t>(s) * s2];
+        const float* ds = &depth_s[static_cast<size_t>(s) * s2];
+        bool one = ws[0] >= 0;
+        for (int j = 1; j < s2 && one; ++j) one = ws[j] == ws[0];
+        Rgb one_colour{};
+        if (one) {
+          const Sample m = sample_at(x0 + 0.5 * ss, y0 + 0.5 * ss, ws[0]);
+          one_colour = scale_rgb(shade(m.base, m.n, tri_front[static_cast<size_t>(ws[0])] != 0, light, style));
+        }
+        for (int dy = 0; dy < ss; ++dy)
+          for (int dx = 0; dx < ss; ++dx) {
+            const int j = dy * ss + dx;
+            if (ws[j] < 0) continue;
+            colour_.set(x0 + dx, y0 + dy, one ? one_colour : shade_sample(x0 + dx, y0 + dy, ws[j]));
+            depth_[static_cast<size_t>(y0 + dy) * w_ + x0 + dx] = ds[j];
+          }
+      }
+    return;
+  }
+
+  std::vector<std::int32_t> winner(static_cast<size_t>(w_) * h_, -1);
+  int bx0 = w_, by0 = h_, bx1 = -1, by1 = -1;  // a box around the pixels won by this call
   for (size_t k = 0; k < order.size(); ++k) {
     if (k == n_front) fill_block_far();
     if (k % kGather == 0) gather(k);
@@ -426,59 +725,12 @@ void Rasterizer::draw_mesh(const Points& V, const Triangles& F, const Points& N,
     }
   }
 
-  // The surface at the image point (px, py) (a sample's centre is (x + 0.5, y + 0.5)) on
-  // triangle t: its unit normal (facing the viewer) and base colour.
-  struct Sample {
-    Vec3 n, base;
-  };
-  auto sample_at = [&](double px, double py, std::int32_t t) -> Sample {
-    const bool front = tri_front[static_cast<size_t>(t)] != 0;
-    const Index i0 = F(t, 0), i1 = F(t, 1), i2 = F(t, 2);
-    const Projected &p0 = P[i0], &p1 = P[i1], &p2 = P[i2];
-    const double inv_area = 1.0 / tri_area[static_cast<size_t>(t)];
-    double b0 = edge(p1, p2, px, py) * inv_area;
-    double b1 = edge(p2, p0, px, py) * inv_area;
-    double b2 = edge(p0, p1, px, py) * inv_area;
-    if (perspective) {  // perspective-correct barycentrics (orthographic: they sum to 1 already)
-      b0 /= p0.depth;
-      b1 /= p1.depth;
-      b2 /= p2.depth;
-      const double sum = b0 + b1 + b2;
-      b0 /= sum;
-      b1 /= sum;
-      b2 /= sum;
-    }
-    Vec3 n = Vec3::Zero();
-    if (style.smooth) n = b0 * Vec3(vn.row(i0)) + b1 * Vec3(vn.row(i1)) + b2 * Vec3(vn.row(i2));
-    if (!(n.squaredNorm() > 0)) {  // flat shading, or no usable vertex normals: the face's normal
-      const Vec3 v0 = V.row(i0);
-      n = (Vec3(V.row(i1)) - v0).cross(Vec3(V.row(i2)) - v0);
-      if (!(n.squaredNorm() > 0)) n = front ? Vec3(-f) : Vec3(f);  // degenerate in 3D
-    }
-    n.normalize();
-    if (!front) n = -n;
-    // Interpolated normals may turn away at silhouettes; keep them facing the viewer.
-    const Vec3 view = perspective ? Vec3((camera_.eye - (b0 * Vec3(V.row(i0)) + b1 * Vec3(V.row(i1)) +
-                                                           b2 * Vec3(V.row(i2))))
-                                             .normalized())
-                                  : Vec3(-f);
-    if (n.dot(view) < 0) n = (n - 1.0 * n.dot(view) * view).normalized();
-    return {n, b0 * base_colour(i0) + b1 * base_colour(i1) + b2 * base_colour(i2)};
-  };
-  auto shade_sample = [&](int x, int y, std::int32_t t) {
-    const Sample s = sample_at(x + 0.5, y + 0.5, t);
-    return scale_rgb(shade(s.base, s.n, tri_front[static_cast<size_t>(t)] != 0, light, style));
-  };
-
   // Pass 2, by output pixel (a block of ss × ss samples). A block whose samples all show this
   // call's surface, facing the same way and within kFlatPixels output pixels of depth of each
   // other (not across a silhouette), is lit once with its samples' mean normal and colour, which
   // for the small variations inside one pixel is their mean shade to within a grey level (when
   // one triangle covers the whole block: its normal and colour at the block's centre, their mean
   // up to the normalisation); other blocks are shaded sample by sample (edges stay anti-aliased).
-  constexpr double kFlatPixels = 2.0;
-  const int ss = options_.supersample;
-  const double flat_depth_ortho = kFlatPixels * camera_.world_per_pixel(0.0, options_.height);  // orthographic: any depth
   for (int y0 = by0 / ss * ss; y0 <= by1; y0 += ss)
     for (int x0 = bx0 / ss * ss; x0 <= bx1; x0 += ss) {
       const std::int32_t t0 = winner[static_cast<size_t>(y0) * w_ + x0];

@@ -17,6 +17,11 @@ struct RasterOptions {
   int width = 1024;                 ///< output image width, pixels
   int height = 1024;                ///< output image height, pixels
   int supersample = 2;              ///< internal resolution factor (1 = no anti-aliasing), 1..4
+  /// Supersample only the output pixels at an edge (a change of coverage or facing, a jump of
+  /// depth: silhouettes, folds, holes), the others lit once at their centre: the first draw_mesh
+  /// of an orthographic view (later meshes, perspective views and point clouds always take the
+  /// full path). About half the cost of a dense mesh's surface; false = every sample.
+  bool adaptive_supersample = true;
   Rgb background = {255, 255, 255};
   /// World units an overlay may lie behind the surface and still count as visible (curves drawn
   /// on noisy skin); 0 = strict depth test. Larger shows more but lets things shine through.
@@ -117,6 +122,7 @@ class Rasterizer {
   std::vector<float> depth_;        // +inf where empty
   std::vector<std::uint32_t> ink_;  // overlay marks: 0 none, kVisibleInk, else the draw call id (allocated on first use)
   std::uint32_t call_id_ = 0;
+  bool surface_drawn_ = false;  // a draw_mesh has written depth (the adaptive path needs empty buffers)
 };
 
 }  // namespace breastfit::render
