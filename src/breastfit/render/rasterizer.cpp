@@ -150,6 +150,30 @@ FixedEdge fixed_edge(const FixedPoint& a, const FixedPoint& b, int x0, int y0, s
   return fixed_edge_at(a, b, px, py, std::int64_t{1} << kSubpixelBits, sign);
 }
 
+/// Pass 1 of one triangle over its box xs × ys, in a buffer of `w` samples a row whose sample
+/// (x, y) lies at (scale · (x + 0.5), scale · (y + 0.5)) in the coordinates of the depth plane `ez`:
+/// where the fixed-point edge functions (g0, g1, g2 at the box's first sample) hold it and it is
+/// nearer than `depth`, its depth and the winner `t` are written. True when any sample was.
+inline bool fill_box(const FixedEdge& g0, const FixedEdge& g1, const FixedEdge& g2, Span xs, Span ys, const Linear& ez,
+                     double scale, float* depth, std::int32_t* winner, int w, std::int32_t t) {
+  const double ez_dx = ez.dx * scale;
+  std::int64_t r0 = g0.at_origin, r1 = g1.at_origin, r2 = g2.at_origin;
+  bool wrote = false;
+  for (int y = ys.lo; y <= ys.hi; ++y, r0 += g0.step_y, r1 += g1.step_y, r2 += g2.step_y) {
+    std::int64_t a0 = r0, a1 = r1, a2 = r2;
+    double az = ez.at(scale * (xs.lo + 0.5), scale * (y + 0.5));
+    float* depth_row = depth + static_cast<size_t>(y) * w;
+    std::int32_t* winner_row = winner + static_cast<size_t>(y) * w;
+    for (int x = xs.lo; x <= xs.hi; ++x, a0 += g0.step_x, a1 += g1.step_x, a2 += g2.step_x, az += ez_dx) {
+      if ((a0 | a1 | a2) < 0 || !(az < depth_row[x])) continue;
+      depth_row[x] = static_cast<float>(az);
+      winner_row[x] = t;
+      wrote = true;
+    }
+  }
+  return wrote;
+}
+
 }  // namespace
 
 void RasterOptions::validate() const {
@@ -451,22 +475,7 @@ void Rasterizer::draw_mesh(const Points& V, const Triangles& F, const Points& N,
         const FixedEdge g0 = fixed_edge_at(f1, f2, px, py, step_lo, sign), g1 = fixed_edge_at(f2, f0, px, py, step_lo, sign),
                         g2 = fixed_edge_at(f0, f1, px, py, step_lo, sign);
         const Linear ez = triangle_planes(p0, p1, p2, tri_area[static_cast<size_t>(t)]).depth;
-        const double ez_dx = ez.dx * ss;
-        std::int64_t r0 = g0.at_origin, r1 = g1.at_origin, r2 = g2.at_origin;
-        bool wrote = false;
-        for (int y = ys.lo; y <= ys.hi; ++y, r0 += g0.step_y, r1 += g1.step_y, r2 += g2.step_y) {
-          std::int64_t a0 = r0, a1 = r1, a2 = r2;
-          double az = ez.at(ss * (xs.lo + 0.5), ss * (y + 0.5));
-          float* depth_row = &depth_lo[static_cast<size_t>(y) * W];
-          std::int32_t* winner_row = &winner_lo[static_cast<size_t>(y) * W];
-          for (int x = xs.lo; x <= xs.hi; ++x, a0 += g0.step_x, a1 += g1.step_x, a2 += g2.step_x, az += ez_dx) {
-            if ((a0 | a1 | a2) < 0 || !(az < depth_row[x])) continue;
-            depth_row[x] = static_cast<float>(az);
-            winner_row[x] = t;
-            wrote = true;
-          }
-        }
-        if (wrote) {
+        if (fill_box(g0, g1, g2, xs, ys, ez, ss, depth_lo.data(), winner_lo.data(), W, t)) {
           lx0 = std::min(lx0, xs.lo);
           lx1 = std::max(lx1, xs.hi);
           ly0 = std::min(ly0, ys.lo);
@@ -643,21 +652,7 @@ void Rasterizer::draw_mesh(const Points& V, const Triangles& F, const Points& N,
       const FixedEdge g0 = fixed_edge(f1, f2, xs.lo, ys.lo, sign), g1 = fixed_edge(f2, f0, xs.lo, ys.lo, sign),
                       g2 = fixed_edge(f0, f1, xs.lo, ys.lo, sign);
       const Linear ez = triangle_planes(p0, p1, p2, area).depth;
-      std::int64_t r0 = g0.at_origin, r1 = g1.at_origin, r2 = g2.at_origin;
-      bool wrote = false;
-      for (int y = ys.lo; y <= ys.hi; ++y, r0 += g0.step_y, r1 += g1.step_y, r2 += g2.step_y) {
-        std::int64_t a0 = r0, a1 = r1, a2 = r2;
-        double az = ez.at(xs.lo + 0.5, y + 0.5);
-        float* depth_row = &depth_[static_cast<size_t>(y) * w_];
-        std::int32_t* winner_row = &winner[static_cast<size_t>(y) * w_];
-        for (int x = xs.lo; x <= xs.hi; ++x, a0 += g0.step_x, a1 += g1.step_x, a2 += g2.step_x, az += ez.dx) {
-          if ((a0 | a1 | a2) < 0 || !(az < depth_row[x])) continue;
-          depth_row[x] = static_cast<float>(az);
-          winner_row[x] = t;
-          wrote = true;
-        }
-      }
-      if (wrote) {
+      if (fill_box(g0, g1, g2, xs, ys, ez, 1, depth_.data(), winner.data(), w_, t)) {
         bx0 = std::min(bx0, xs.lo);
         bx1 = std::max(bx1, xs.hi);
         by0 = std::min(by0, ys.lo);
