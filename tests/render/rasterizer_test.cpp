@@ -118,6 +118,17 @@ TEST(Rasterizer, BackFaceNearerThanAFrontFaceIsDrawn) {
   }
 }
 
+/// The largest channel difference between two images of the same size.
+int worst_difference(const Image& a, const Image& b) {
+  int worst = 0;
+  for (int y = 0; y < a.height(); ++y)
+    for (int x = 0; x < a.width(); ++x) {
+      const Rgb p = a.at(x, y), q = b.at(x, y);
+      worst = std::max({worst, std::abs(p.r - q.r), std::abs(p.g - q.g), std::abs(p.b - q.b)});
+    }
+  return worst;
+}
+
 /// The worst channel difference between `mesh` drawn supersampled (2×) and drawn at twice the
 /// size without supersampling, then box-filtered: what lighting a pixel once costs against
 /// shading every sample and averaging. Also counts the pixels drawn.
@@ -134,14 +145,8 @@ int worst_against_per_sample_shading(const TriangleMesh& mesh, Projection proj, 
   a.draw_mesh(mesh);
   b.draw_mesh(mesh);
   const Image ia = a.resolve(), ib = b.resolve().downsampled(2);
-  int worst = 0;
-  for (int y = 0; y < ia.height(); ++y)
-    for (int x = 0; x < ia.width(); ++x) {
-      const Rgb p = ia.at(x, y), q = ib.at(x, y);
-      worst = std::max({worst, std::abs(p.r - q.r), std::abs(p.g - q.g), std::abs(p.b - q.b)});
-    }
   *drawn = count_not(ia, {255, 255, 255});
-  return worst;
+  return worst_difference(ia, ib);
 }
 
 /// A unit sphere coloured by height, `rings` × `segments` quads.
@@ -215,17 +220,6 @@ TEST(Rasterizer, VertexColoursAreInterpolated) {
   const Rgb low = img.at(50, 85), high = img.at(50, 15);
   EXPECT_GT(low.r, low.b + 100);
   EXPECT_GT(high.b, high.r + 100);
-}
-
-/// The largest channel difference between two images of the same size.
-int worst_difference(const Image& a, const Image& b) {
-  int worst = 0;
-  for (int y = 0; y < a.height(); ++y)
-    for (int x = 0; x < a.width(); ++x) {
-      const Rgb p = a.at(x, y), q = b.at(x, y);
-      worst = std::max({worst, std::abs(p.r - q.r), std::abs(p.g - q.g), std::abs(p.b - q.b)});
-    }
-  return worst;
 }
 
 /// Pixels whose largest channel difference between `a` and `b` exceeds `levels`.
