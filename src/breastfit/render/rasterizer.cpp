@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <string>
 #include <utility>
 
@@ -132,23 +133,66 @@ FixedPoint to_fixed(const Projected& p) {
 }
 bool fixed_range(const Projected& p) { return std::abs(p.x) < kFixedLimit && std::abs(p.y) < kFixedLimit; }
 
-/// edge(a, b, ·) in fixed point as an integer function of the sample (x, y) (centre x + 0.5,
-/// y + 0.5): value at sample (x0, y0) and its steps by one sample in x and in y.
+/// edge(a, b, ·) in fixed point as an integer function of the sample position: its value at the
+/// box's first sample and its steps by one sample in x and in y.
 struct FixedEdge {
   std::int64_t at_origin, step_x, step_y;
 };
-/// The same at the fixed-point position (px, py), stepping by `step` (fixed point) in x and in y.
+/// edge(a, b, ·) · sign at the fixed-point position (px, py), stepping by `step` (fixed point).
 FixedEdge fixed_edge_at(const FixedPoint& a, const FixedPoint& b, std::int64_t px, std::int64_t py, std::int64_t step,
                         std::int64_t sign) {
   const std::int64_t ex = b.x - a.x, ey = b.y - a.y;
   return {sign * (ex * (py - a.y) - ey * (px - a.x)), sign * (-ey * step), sign * (ex * step)};
 }
-FixedEdge fixed_edge(const FixedPoint& a, const FixedPoint& b, int x0, int y0, std::int64_t sign) {
-  const std::int64_t half = 1 << (kSubpixelBits - 1);
-  const std::int64_t px = (static_cast<std::int64_t>(x0) << kSubpixelBits) + half;
-  const std::int64_t py = (static_cast<std::int64_t>(y0) << kSubpixelBits) + half;
-  return fixed_edge_at(a, b, px, py, std::int64_t{1} << kSubpixelBits, sign);
+/// The fixed-point position of sample x's centre (x + 0.5).
+std::int64_t sample_centre(int x) {
+  return (static_cast<std::int64_t>(x) << kSubpixelBits) + (std::int64_t{1} << (kSubpixelBits - 1));
 }
+
+/// A triangle's three edge functions in fixed point (g0 opposite corner 0, …), positive inside
+/// whichever way it winds, at the fixed-point position (px, py), stepping by `step`; nullopt when
+/// it is thinner than a 256th of a sample (nothing to draw).
+struct FixedEdges {
+  FixedEdge g0, g1, g2;
+};
+std::optional<FixedEdges> fixed_edges(const Projected& p0, const Projected& p1, const Projected& p2, std::int64_t px,
+                                      std::int64_t py, std::int64_t step) {
+  const FixedPoint f0 = to_fixed(p0), f1 = to_fixed(p1), f2 = to_fixed(p2);
+  const std::int64_t fixed_area = (f1.x - f0.x) * (f2.y - f0.y) - (f1.y - f0.y) * (f2.x - f0.x);
+  if (fixed_area == 0) return std::nullopt;
+  const std::int64_t sign = fixed_area > 0 ? 1 : -1;
+  return FixedEdges{fixed_edge_at(f1, f2, px, py, step, sign), fixed_edge_at(f2, f0, px, py, step, sign),
+                    fixed_edge_at(f0, f1, px, py, step, sign)};
+}
+
+/// The farthest depth drawn in each block of kBlock × kBlock pixels of a w × h grid (+inf where a
+/// pixel is empty), for the coarse depth test of the back faces: a triangle no nearer than that over
+/// all the blocks of its box fails the depth test at every pixel.
+class BlockFar {
+ public:
+  static constexpr int kBlock = 8;
+  BlockFar(int w, int h) : w_(w), h_(h), blocks_x_((w + kBlock - 1) / kBlock), blocks_y_((h + kBlock - 1) / kBlock) {}
+  /// Fills the blocks from `pixel_far(y · w + x)`, the farthest depth at pixel (x, y).
+  template <class PixelFar>
+  void fill(PixelFar&& pixel_far) {
+    far_.assign(static_cast<size_t>(blocks_x_) * blocks_y_, 0.0f);
+    for (int y = 0; y < h_; ++y) {
+      float* out = &far_[static_cast<size_t>(y / kBlock) * blocks_x_];
+      for (int x = 0; x < w_; ++x) out[x / kBlock] = std::max(out[x / kBlock], pixel_far(static_cast<size_t>(y) * w_ + x));
+    }
+  }
+  /// True when `nearest` is no nearer than the farthest depth over the pixels [x0, x1] × [y0, y1].
+  bool hidden(int x0, int y0, int x1, int y1, double nearest) const {
+    for (int by = y0 / kBlock; by <= y1 / kBlock; ++by)
+      for (int bx = x0 / kBlock; bx <= x1 / kBlock; ++bx)
+        if (nearest < far_[static_cast<size_t>(by) * blocks_x_ + bx]) return false;
+    return true;
+  }
+
+ private:
+  int w_, h_, blocks_x_, blocks_y_;
+  std::vector<float> far_;
+};
 
 /// Pass 1 of one triangle over its box xs × ys, in a buffer of `w` samples a row whose sample
 /// (x, y) lies at (scale · (x + 0.5), scale · (y + 0.5)) in the coordinates of the depth plane `ez`:
@@ -331,26 +375,8 @@ void Rasterizer::draw_mesh(const Points& V, const Triangles& F, const Points& N,
     }
   };
 
-  // The farthest depth drawn in each block of kBlock × kBlock pixels (+inf where a pixel is
-  // empty), filled after the front faces: a triangle no nearer than that over all the blocks
-  // of its bounding box fails the depth test at every pixel.
-  constexpr int kBlock = 8;
-  const int blocks_x = (w_ + kBlock - 1) / kBlock, blocks_y = (h_ + kBlock - 1) / kBlock;
-  std::vector<float> block_far;
-  auto fill_block_far = [&] {
-    block_far.assign(static_cast<size_t>(blocks_x) * blocks_y, 0.0f);
-    for (int y = 0; y < h_; ++y) {
-      const float* row = &depth_[static_cast<size_t>(y) * w_];
-      float* out = &block_far[static_cast<size_t>(y / kBlock) * blocks_x];
-      for (int x = 0; x < w_; ++x) out[x / kBlock] = std::max(out[x / kBlock], row[x]);
-    }
-  };
-  auto hidden = [&](const Span& xs, const Span& ys, double nearest) {
-    for (int by = ys.lo / kBlock; by <= ys.hi / kBlock; ++by)
-      for (int bx = xs.lo / kBlock; bx <= xs.hi / kBlock; ++bx)
-        if (nearest < block_far[static_cast<size_t>(by) * blocks_x + bx]) return false;
-    return true;
-  };
+  // The coarse depth test of the back faces (BlockFar), filled after the front faces.
+  BlockFar block_far(w_, h_);
 
   const int ss = options_.supersample;
   // The first surface drawn (the buffers hold nothing yet), orthographic, in the fixed-point range.
@@ -426,22 +452,8 @@ void Rasterizer::draw_mesh(const Points& V, const Triangles& F, const Points& N,
     };
     const size_t n_buckets = 2 * static_cast<size_t>(tiles);
     std::vector<Box> bucket_box(n_buckets, Box{w_, h_, -1, -1});
-    // The coarse depth test of the back faces, by blocks of kBlock × kBlock output pixels.
-    const int lblocks_x = (W + kBlock - 1) / kBlock, lblocks_y = (H + kBlock - 1) / kBlock;
-    std::vector<float> far_lo;
-    auto fill_far = [&](auto&& pixel_far) {
-      far_lo.assign(static_cast<size_t>(lblocks_x) * lblocks_y, 0.0f);
-      for (int y = 0; y < H; ++y) {
-        float* out = &far_lo[static_cast<size_t>(y / kBlock) * lblocks_x];
-        for (int x = 0; x < W; ++x) out[x / kBlock] = std::max(out[x / kBlock], pixel_far(static_cast<size_t>(y) * W + x));
-      }
-    };
-    auto hidden_lo = [&](int x0, int y0, int x1, int y1, double nearest) {
-      for (int by = y0 / kBlock; by <= y1 / kBlock; ++by)
-        for (int bx = x0 / kBlock; bx <= x1 / kBlock; ++bx)
-          if (nearest < far_lo[static_cast<size_t>(by) * lblocks_x + bx]) return false;
-      return true;
-    };
+    // The coarse depth test of the back faces, by blocks of output pixels.
+    BlockFar far_lo(W, H);
     const std::int64_t step_lo = static_cast<std::int64_t>(ss) << kSubpixelBits;
     const std::int64_t half_lo = static_cast<std::int64_t>(ss) << (kSubpixelBits - 1);
     // Per triangle (in drawing order), its box of samples for the refinement, which then reads
@@ -449,7 +461,7 @@ void Rasterizer::draw_mesh(const Points& V, const Triangles& F, const Points& N,
     std::vector<std::array<std::uint16_t, 4>> tri_box(order.size(), {1, 0, 0, 0});
     size_t k = 0;
     for (size_t b = 0; b < n_buckets; ++b) {
-      if (b == static_cast<size_t>(tiles)) fill_far([&](size_t p) { return depth_lo[p]; });
+      if (b == static_cast<size_t>(tiles)) far_lo.fill([&](size_t p) { return depth_lo[p]; });
       for (const size_t end = static_cast<size_t>(bucket_start[b]); k < end; ++k) {
         if (k % kGather == 0) gather(k);
         const std::int32_t t = order[k];
@@ -466,16 +478,11 @@ void Rasterizer::draw_mesh(const Points& V, const Triangles& F, const Points& N,
         }
         const Span xs = pixel_span(min_x / ss, max_x / ss, W), ys = pixel_span(min_y / ss, max_y / ss, H);
         if (xs.lo > xs.hi || ys.lo > ys.hi) continue;
-        if (k >= n_front && hidden_lo(xs.lo, ys.lo, xs.hi, ys.hi, std::min({p0.depth, p1.depth, p2.depth}))) continue;
-        const FixedPoint f0 = to_fixed(p0), f1 = to_fixed(p1), f2 = to_fixed(p2);
-        const std::int64_t fixed_area = (f1.x - f0.x) * (f2.y - f0.y) - (f1.y - f0.y) * (f2.x - f0.x);
-        if (fixed_area == 0) continue;
-        const std::int64_t sign = fixed_area > 0 ? 1 : -1;
-        const std::int64_t px = xs.lo * step_lo + half_lo, py = ys.lo * step_lo + half_lo;
-        const FixedEdge g0 = fixed_edge_at(f1, f2, px, py, step_lo, sign), g1 = fixed_edge_at(f2, f0, px, py, step_lo, sign),
-                        g2 = fixed_edge_at(f0, f1, px, py, step_lo, sign);
+        if (k >= n_front && far_lo.hidden(xs.lo, ys.lo, xs.hi, ys.hi, std::min({p0.depth, p1.depth, p2.depth}))) continue;
+        const auto g = fixed_edges(p0, p1, p2, xs.lo * step_lo + half_lo, ys.lo * step_lo + half_lo, step_lo);
+        if (!g) continue;
         const Linear ez = triangle_planes(p0, p1, p2, tri_area[static_cast<size_t>(t)]).depth;
-        if (fill_box(g0, g1, g2, xs, ys, ez, ss, depth_lo.data(), winner_lo.data(), W, t)) {
+        if (fill_box(g->g0, g->g1, g->g2, xs, ys, ez, ss, depth_lo.data(), winner_lo.data(), W, t)) {
           lx0 = std::min(lx0, xs.lo);
           lx1 = std::max(lx1, xs.hi);
           ly0 = std::min(ly0, ys.lo);
@@ -540,7 +547,7 @@ void Rasterizer::draw_mesh(const Points& V, const Triangles& F, const Points& N,
       k = end;
       if (n_marked == 0) break;
       if (b == static_cast<size_t>(tiles))  // a marked pixel's farthest sample, an unmarked pixel's depth
-        fill_far([&](size_t p) {
+        far_lo.fill([&](size_t p) {
           const std::int32_t s = slot_of[p];
           if (s < 0) return depth_lo[p];
           float far = 0.0f;
@@ -556,14 +563,11 @@ void Rasterizer::draw_mesh(const Points& V, const Triangles& F, const Points& N,
         if (!marked_in(qx0, qy0, qx1, qy1)) continue;
         const std::int32_t t = order[kk];
         const Projected &p0 = P[F(t, 0)], &p1 = P[F(t, 1)], &p2 = P[F(t, 2)];
-        if (kk >= n_front && hidden_lo(qx0, qy0, qx1, qy1, std::min({p0.depth, p1.depth, p2.depth}))) continue;
-        const FixedPoint f0 = to_fixed(p0), f1 = to_fixed(p1), f2 = to_fixed(p2);
-        const std::int64_t fixed_area = (f1.x - f0.x) * (f2.y - f0.y) - (f1.y - f0.y) * (f2.x - f0.x);
-        if (fixed_area == 0) continue;
-        const std::int64_t sign = fixed_area > 0 ? 1 : -1;
+        if (kk >= n_front && far_lo.hidden(qx0, qy0, qx1, qy1, std::min({p0.depth, p1.depth, p2.depth}))) continue;
         const int sx0 = qx0 * ss, sy0 = qy0 * ss;  // the samples' origin
-        const FixedEdge g0 = fixed_edge(f1, f2, sx0, sy0, sign), g1 = fixed_edge(f2, f0, sx0, sy0, sign),
-                        g2 = fixed_edge(f0, f1, sx0, sy0, sign);
+        const auto g = fixed_edges(p0, p1, p2, sample_centre(sx0), sample_centre(sy0), std::int64_t{1} << kSubpixelBits);
+        if (!g) continue;
+        const FixedEdge &g0 = g->g0, &g1 = g->g1, &g2 = g->g2;
         const Linear ez = triangle_planes(p0, p1, p2, tri_area[static_cast<size_t>(t)]).depth;
         for (int ly = qy0; ly <= qy1; ++ly)
           for (int lx = qx0; lx <= qx1; ++lx) {
@@ -630,7 +634,7 @@ void Rasterizer::draw_mesh(const Points& V, const Triangles& F, const Points& N,
   std::vector<std::int32_t> winner(static_cast<size_t>(w_) * h_, -1);
   int bx0 = w_, by0 = h_, bx1 = -1, by1 = -1;  // a box around the pixels won by this call
   for (size_t k = 0; k < order.size(); ++k) {
-    if (k == n_front) fill_block_far();
+    if (k == n_front) block_far.fill([&](size_t p) { return depth_[p]; });
     if (k % kGather == 0) gather(k);
     const std::int32_t t = order[k];
     const std::array<Projected, 3>& c = corners[k % kGather];
@@ -640,19 +644,15 @@ void Rasterizer::draw_mesh(const Points& V, const Triangles& F, const Points& N,
     const Span ys = pixel_span(std::min({p0.y, p1.y, p2.y}), std::max({p0.y, p1.y, p2.y}), h_);
     if (xs.lo > xs.hi || ys.lo > ys.hi) continue;
     // Every depth inside the triangle (perspective-correct too) lies between its corners'.
-    if (k >= n_front && hidden(xs, ys, std::min({p0.depth, p1.depth, p2.depth}))) continue;
+    if (k >= n_front && block_far.hidden(xs.lo, ys.lo, xs.hi, ys.hi, std::min({p0.depth, p1.depth, p2.depth}))) continue;
 
     if (!perspective && fixed_range(p0) && fixed_range(p1) && fixed_range(p2)) {
       // Orthographic: exact integer edge functions over the triangle's box, the depth linear in
       // the sample position (one multiply-add per sample instead of a perspective division).
-      const FixedPoint f0 = to_fixed(p0), f1 = to_fixed(p1), f2 = to_fixed(p2);
-      const std::int64_t fixed_area = (f1.x - f0.x) * (f2.y - f0.y) - (f1.y - f0.y) * (f2.x - f0.x);
-      if (fixed_area == 0) continue;  // thinner than a 256th of a sample
-      const std::int64_t sign = fixed_area > 0 ? 1 : -1;
-      const FixedEdge g0 = fixed_edge(f1, f2, xs.lo, ys.lo, sign), g1 = fixed_edge(f2, f0, xs.lo, ys.lo, sign),
-                      g2 = fixed_edge(f0, f1, xs.lo, ys.lo, sign);
+      const auto g = fixed_edges(p0, p1, p2, sample_centre(xs.lo), sample_centre(ys.lo), std::int64_t{1} << kSubpixelBits);
+      if (!g) continue;  // thinner than a 256th of a sample
       const Linear ez = triangle_planes(p0, p1, p2, area).depth;
-      if (fill_box(g0, g1, g2, xs, ys, ez, 1, depth_.data(), winner.data(), w_, t)) {
+      if (fill_box(g->g0, g->g1, g->g2, xs, ys, ez, 1, depth_.data(), winner.data(), w_, t)) {
         bx0 = std::min(bx0, xs.lo);
         bx1 = std::max(bx1, xs.hi);
         by0 = std::min(by0, ys.lo);
