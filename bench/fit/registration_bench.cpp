@@ -1,7 +1,7 @@
 // Benchmarks of the registration's parts and of a whole fit, on a synthetic case made from the
 // shipped default template (no external data): scan index build, correspondences, the arm search
 // of the initialisation, normal equations assembly (with and without the blendshapes), one LM
-// iteration, the surface-detail layer, and the full registration (what report.json's time_s
+// iteration, posing the template, the surface-detail layer, and the full registration (what report.json's time_s
 // measures); the parallel parts with 1 and 2 threads (the last argument).
 #include <benchmark/benchmark.h>
 
@@ -14,6 +14,7 @@
 #include "breastfit/fit/surface_detail.h"
 #include "breastfit/fit/initialization.h"
 #include "breastfit/mesh/landmarks.h"
+#include "breastfit/model/pose_evaluator.h"
 #include "breastfit/model/template_library.h"
 #include "breastfit/pipeline/scan_input.h"
 #include "breastfit/synth/synth_case.h"
@@ -128,6 +129,28 @@ BENCHMARK(BM_NormalEquationsAssembly)
     ->Args({1, 0})
     ->Args({2, 0})
     ->Unit(benchmark::kMillisecond);
+
+// Posing the template (PoseEvaluator::set_params) for parameters that alternate between two sets,
+// as an LM step tried and taken does: with range(0) 0 only the pose differs (the landmark_pose,
+// rigid and pose stages), with 1 the blendshape weights too (shape, refine).
+void BM_SetParams(benchmark::State& state) {
+  auto& f = fixture();
+  model::PoseEvaluator ev(f.model);
+  model::PoseParams a = f.start;
+  a.alpha.setConstant(0.1);
+  model::PoseParams b = a;
+  b.global.translation += Vec3(1.0, -0.5, 0.25);
+  b.bones[0].scale *= 1.01;
+  if (state.range(0) == 1) b.alpha.setConstant(0.12);
+  bool flip = false;
+  for (auto _ : state) {
+    ev.set_params(flip ? a : b);
+    flip = !flip;
+    benchmark::DoNotOptimize(ev.vertices().data());
+  }
+  state.counters["vertices"] = static_cast<double>(f.model.num_vertices());
+}
+BENCHMARK(BM_SetParams)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 
 void BM_OneLmIteration(benchmark::State& state) {
   auto& f = fixture();

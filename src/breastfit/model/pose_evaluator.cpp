@@ -81,16 +81,25 @@ void PoseEvaluator::set_params(const PoseParams& params) {
   // The solver sets the same parameters again (after an accepted step, at a stage's start and
   // end): the posed mesh is already theirs.
   if (posed_.rows() == m.num_vertices() && same_params(params, params_)) return;
+  // The stages that move only the pose (landmark_pose, rigid, pose) keep the blendshape weights:
+  // their shaped mesh is the one already here.
+  const bool same_shape = shaped_.rows() == m.num_vertices() && same_bits(params.alpha, params_.alpha);
   params_ = params;
   const Index nv = m.num_vertices();
 
-  // B = v + Σ α_k b_k
-  shaped_ = m.rest.V;
-  for (int k = 0; k < m.num_blendshapes(); ++k) {
-    const double a = params.alpha[k];
-    if (a == 0.0) continue;
-    const Blendshape& s = m.blendshapes[k];
-    for (size_t r = 0; r < s.vertices.size(); ++r) shaped_.row(s.vertices[r]) += a * s.displacements.row(r);
+  // B = v + Σ α_k b_k, vertex by vertex from the incidence (the shapes in ascending order, as a
+  // pass per shape would add them).
+  if (!same_shape) {
+    shaped_.resize(nv, 3);
+    const double* alpha = params.alpha.data();
+    for (Index i = 0; i < nv; ++i) {
+      Vec3 b = m.rest.V.row(i).transpose();
+      for (int e = shape_ptr_[i]; e < shape_ptr_[i + 1]; ++e) {
+        const double a = alpha[shape_entries_[e].shape];
+        if (a != 0.0) b += a * shape_entries_[e].displacement;
+      }
+      shaped_.row(i) = b.transpose();
+    }
   }
 
   // Per bone: L_j and the offset o_j = c_j + t_j − L_j c_j, so that L_j (B − c_j) + c_j + t_j = L_j B + o_j.
