@@ -12,211 +12,36 @@
 #include "breastfit/core/errors.h"
 #include "breastfit/mesh/adjacency.h"
 #include "breastfit/mesh/normals.h"
+#include "breastfit/render/detail/block_far.h"
+#include "breastfit/render/detail/raster_setup.h"
+#include "breastfit/render/detail/shading.h"
 
 namespace breastfit::render {
+
+using detail::BlockFar;
+using detail::edge;
+using detail::fill_box;
+using detail::FixedEdge;
+using detail::fixed_edges;
+using detail::fixed_range;
+using detail::kEmpty;
+using detail::kSubpixelBits;
+using detail::Lighting;
+using detail::Linear;
+using detail::make_lighting;
+using detail::pixel_index;
+using detail::pixel_span;
+using detail::sample_centre;
+using detail::scale_rgb;
+using detail::shade;
+using detail::Span;
+using detail::to_vec;
+using detail::triangle_planes;
+using detail::TrianglePlanes;
 
 namespace {
 
 constexpr std::uint32_t kVisibleInk = std::numeric_limits<std::uint32_t>::max();
-constexpr float kEmpty = std::numeric_limits<float>::infinity();
-
-Rgb scale_rgb(const Vec3& c) {
-  // Round half up after clamping to [0, 255] (NaN → 0): no libm call per channel.
-  auto ch = [](double v) { return static_cast<std::uint8_t>(v > 0 ? std::min(v, 255.0) + 0.5 : 0.0); };
-  return {ch(c[0]), ch(c[1]), ch(c[2])};
-}
-
-Vec3 to_vec(Rgb c) { return Vec3(c.r, c.g, c.b); }
-
-/// Lights and viewing direction in world coordinates.
-struct Lighting {
-  Vec3 headlight;  // towards the camera
-  Vec3 key;        // towards the key light (upper left of the viewer)
-};
-
-Lighting make_lighting(const Camera& cam) {
-  const Vec3 f = cam.forward(), r = cam.right(), u = cam.true_up();
-  return {-f, (-0.8 * f + 0.7 * u - 0.5 * r).normalized()};
-}
-
-/// x^e for x in [0, 1]: by repeated squaring when e is a whole number up to 64 (the default
-/// shininess 24: five multiplications instead of a pow call per pixel), else std::pow.
-double power(double x, double e) {
-  const int n = static_cast<int>(e);
-  if (n != e || n < 0 || n > 64) return std::pow(x, e);
-  double result = 1.0, base = x;
-  for (int k = n; k > 0; k >>= 1) {
-    if (k & 1) result *= base;
-    base *= base;
-  }
-  return result;
-}
-
-/// Shaded colour of a surface sample whose normal `n` already faces the viewer.
-Vec3 shade(const Vec3& base, const Vec3& n, bool front, const Lighting& light, const SurfaceStyle& s) {
-  const double d1 = std::max(0.0, n.dot(light.headlight));
-  const double d2 = std::max(0.0, n.dot(light.key));
-  const double intensity = s.ambient + s.headlight * d1 + s.key_light * d2;
-  if (!front) {
-    const Vec3 tinted = 0.2 * base + 0.8 * to_vec(s.back_colour);
-    return tinted * (intensity * s.back_brightness);
-  }
-  const double spec = s.specular > 0 ? s.specular * power(d1, s.shininess) : 0.0;
-  return base * intensity + Vec3::Constant(255.0 * spec);
-}
-
-/// Pixels whose centres (i + 0.5) lie in [a, b], clipped to [0, n − 1]: [lo, hi], empty when
-/// lo > hi (also for non-finite bounds).
-struct Span {
-  int lo = 1;
-  int hi = 0;
-};
-Span pixel_span(double a, double b, int n) {
-  if (!(std::isfinite(a) && std::isfinite(b))) return {};
-  const double lo = std::max(0.0, std::ceil(a - 0.5));
-  const double hi = std::min(n - 1.0, std::floor(b - 0.5));
-  if (lo > hi) return {};
-  return {static_cast<int>(lo), static_cast<int>(hi)};
-}
-
-/// floor(v) as an int, saturated to [−1, 2^30] (non-finite → −1), for inside-the-image tests.
-int pixel_index(double v) {
-  if (!std::isfinite(v)) return -1;
-  return static_cast<int>(std::clamp(std::floor(v), -1.0, 1073741824.0));
-}
-
-double edge(const Projected& a, const Projected& b, double px, double py) {
-  return (b.x - a.x) * (py - a.y) - (b.y - a.y) * (px - a.x);
-}
-
-/// dx · px + dy · py + c.
-struct Linear {
-  double dx = 0, dy = 0, c = 0;
-  double at(double px, double py) const { return dx * px + dy * py + c; }
-};
-
-/// edge(a, b, px, py) · scale as a linear function of the pixel position.
-Linear edge_function(const Projected& a, const Projected& b, double scale) {
-  const double ex = b.x - a.x, ey = b.y - a.y;
-  return {-ey * scale, ex * scale, (ey * a.x - ex * a.y) * scale};
-}
-
-/// A triangle's barycentric coordinates as linear functions of the pixel position (its edge
-/// functions over its signed area, twice) and, orthographic, its depth from them.
-struct TrianglePlanes {
-  Linear e0, e1, e2, depth;
-};
-TrianglePlanes triangle_planes(const Projected& p0, const Projected& p1, const Projected& p2, double area) {
-  const double inv_area = 1.0 / area;
-  const Linear e0 = edge_function(p1, p2, inv_area), e1 = edge_function(p2, p0, inv_area),
-               e2 = edge_function(p0, p1, inv_area);
-  return {e0, e1, e2,
-          {e0.dx * p0.depth + e1.dx * p1.depth + e2.dx * p2.depth, e0.dy * p0.depth + e1.dy * p1.depth + e2.dy * p2.depth,
-           e0.c * p0.depth + e1.c * p1.depth + e2.c * p2.depth}};
-}
-
-/// An image position in fixed point: kSubpixelBits fractional bits of a (supersampled) sample.
-/// Edge functions of fixed-point corners are exact integers, so a sample on an edge shared by
-/// two triangles is inside both (no cracks, whatever the order of evaluation).
-constexpr int kSubpixelBits = 8;
-constexpr double kSubpixel = 1 << kSubpixelBits;
-/// Beyond this (in samples) a corner's fixed-point products could overflow: the double path draws it.
-constexpr double kFixedLimit = 1 << 22;
-
-struct FixedPoint {
-  std::int64_t x, y;
-};
-FixedPoint to_fixed(const Projected& p) {
-  // Rounded half away from zero, inline (std::llround is a libm call, ~2 % of a layer's time).
-  auto round = [](double v) { return static_cast<std::int64_t>(v + (v < 0 ? -0.5 : 0.5)); };
-  return {round(p.x * kSubpixel), round(p.y * kSubpixel)};
-}
-bool fixed_range(const Projected& p) { return std::abs(p.x) < kFixedLimit && std::abs(p.y) < kFixedLimit; }
-
-/// edge(a, b, ·) in fixed point as an integer function of the sample position: its value at the
-/// box's first sample and its steps by one sample in x and in y.
-struct FixedEdge {
-  std::int64_t at_origin, step_x, step_y;
-};
-/// edge(a, b, ·) · sign at the fixed-point position (px, py), stepping by `step` (fixed point).
-FixedEdge fixed_edge_at(const FixedPoint& a, const FixedPoint& b, std::int64_t px, std::int64_t py, std::int64_t step,
-                        std::int64_t sign) {
-  const std::int64_t ex = b.x - a.x, ey = b.y - a.y;
-  return {sign * (ex * (py - a.y) - ey * (px - a.x)), sign * (-ey * step), sign * (ex * step)};
-}
-/// The fixed-point position of sample x's centre (x + 0.5).
-std::int64_t sample_centre(int x) {
-  return (static_cast<std::int64_t>(x) << kSubpixelBits) + (std::int64_t{1} << (kSubpixelBits - 1));
-}
-
-/// A triangle's three edge functions in fixed point (g0 opposite corner 0, …), positive inside
-/// whichever way it winds, at the fixed-point position (px, py), stepping by `step`; nullopt when
-/// it is thinner than a 256th of a sample (nothing to draw).
-struct FixedEdges {
-  FixedEdge g0, g1, g2;
-};
-std::optional<FixedEdges> fixed_edges(const Projected& p0, const Projected& p1, const Projected& p2, std::int64_t px,
-                                      std::int64_t py, std::int64_t step) {
-  const FixedPoint f0 = to_fixed(p0), f1 = to_fixed(p1), f2 = to_fixed(p2);
-  const std::int64_t fixed_area = (f1.x - f0.x) * (f2.y - f0.y) - (f1.y - f0.y) * (f2.x - f0.x);
-  if (fixed_area == 0) return std::nullopt;
-  const std::int64_t sign = fixed_area > 0 ? 1 : -1;
-  return FixedEdges{fixed_edge_at(f1, f2, px, py, step, sign), fixed_edge_at(f2, f0, px, py, step, sign),
-                    fixed_edge_at(f0, f1, px, py, step, sign)};
-}
-
-/// The farthest depth drawn in each block of kBlock × kBlock pixels of a w × h grid (+inf where a
-/// pixel is empty), for the coarse depth test of the back faces: a triangle no nearer than that over
-/// all the blocks of its box fails the depth test at every pixel.
-class BlockFar {
- public:
-  static constexpr int kBlock = 8;
-  BlockFar(int w, int h) : w_(w), h_(h), blocks_x_((w + kBlock - 1) / kBlock), blocks_y_((h + kBlock - 1) / kBlock) {}
-  /// Fills the blocks from `pixel_far(y · w + x)`, the farthest depth at pixel (x, y).
-  template <class PixelFar>
-  void fill(PixelFar&& pixel_far) {
-    far_.assign(static_cast<size_t>(blocks_x_) * blocks_y_, 0.0f);
-    for (int y = 0; y < h_; ++y) {
-      float* out = &far_[static_cast<size_t>(y / kBlock) * blocks_x_];
-      for (int x = 0; x < w_; ++x) out[x / kBlock] = std::max(out[x / kBlock], pixel_far(static_cast<size_t>(y) * w_ + x));
-    }
-  }
-  /// True when `nearest` is no nearer than the farthest depth over the pixels [x0, x1] × [y0, y1].
-  bool hidden(int x0, int y0, int x1, int y1, double nearest) const {
-    for (int by = y0 / kBlock; by <= y1 / kBlock; ++by)
-      for (int bx = x0 / kBlock; bx <= x1 / kBlock; ++bx)
-        if (nearest < far_[static_cast<size_t>(by) * blocks_x_ + bx]) return false;
-    return true;
-  }
-
- private:
-  int w_, h_, blocks_x_, blocks_y_;
-  std::vector<float> far_;
-};
-
-/// Pass 1 of one triangle over its box xs × ys, in a buffer of `w` samples a row whose sample
-/// (x, y) lies at (scale · (x + 0.5), scale · (y + 0.5)) in the coordinates of the depth plane `ez`:
-/// where the fixed-point edge functions (g0, g1, g2 at the box's first sample) hold it and it is
-/// nearer than `depth`, its depth and the winner `t` are written. True when any sample was.
-inline bool fill_box(const FixedEdge& g0, const FixedEdge& g1, const FixedEdge& g2, Span xs, Span ys, const Linear& ez,
-                     double scale, float* depth, std::int32_t* winner, int w, std::int32_t t) {
-  const double ez_dx = ez.dx * scale;
-  std::int64_t r0 = g0.at_origin, r1 = g1.at_origin, r2 = g2.at_origin;
-  bool wrote = false;
-  for (int y = ys.lo; y <= ys.hi; ++y, r0 += g0.step_y, r1 += g1.step_y, r2 += g2.step_y) {
-    std::int64_t a0 = r0, a1 = r1, a2 = r2;
-    double az = ez.at(scale * (xs.lo + 0.5), scale * (y + 0.5));
-    float* depth_row = depth + static_cast<size_t>(y) * w;
-    std::int32_t* winner_row = winner + static_cast<size_t>(y) * w;
-    for (int x = xs.lo; x <= xs.hi; ++x, a0 += g0.step_x, a1 += g1.step_x, a2 += g2.step_x, az += ez_dx) {
-      if ((a0 | a1 | a2) < 0 || !(az < depth_row[x])) continue;
-      depth_row[x] = static_cast<float>(az);
-      winner_row[x] = t;
-      wrote = true;
-    }
-  }
-  return wrote;
-}
 
 }  // namespace
 
