@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "breastfit/core/errors.h"
+#include "render/render_test_camera.h"
 #include "support/test_shapes.h"
 
 namespace breastfit::render {
@@ -16,15 +17,7 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-/// Orthographic camera at −y looking +y (a front view), showing `view_height` units.
-Camera front_camera(double view_height) {
-  Camera c;
-  c.eye = Vec3(0, -50, 0);
-  c.target = Vec3::Zero();
-  c.up = Vec3(0, 0, 1);
-  c.view_height = view_height;
-  return c;
-}
+using test::front_camera;
 
 RasterOptions small_options(int size = 200) {
   RasterOptions o;
