@@ -385,6 +385,50 @@ TEST(Registration, ASubsetOfLandmarksPlacesTheAnatomyAgainAfterTheRefineStage) {
   EXPECT_EQ(refines(given), 1);
 }
 
+// The placed landmarks' checks on threads (the two nipples' scan searches side by side): a
+// synthetic torso with the right nipple placed 30 mm too low is flagged, and the checks —
+// predictions, anatomy, flags, factors, warnings — and the fit held off by them are the same bits
+// with 1, 2 and 3 threads.
+TEST(Registration, PlacedLandmarkChecksAreTheSameWhateverTheNumberOfThreads) {
+  const synth::SynthCase& c = test_anatomy::synth_case(synth::PoseType::Standing);
+  const model::RiggedModel& m = *test::default_template();
+  std::vector<std::pair<std::string, Vec3>> named;
+  for (const auto& p : c.input_landmarks) named.emplace_back(p.name, p.position);
+  const auto nipple = std::find_if(named.begin(), named.end(), [](const auto& p) { return p.first == "nipple_R"; });
+  ASSERT_NE(nipple, named.end());
+  nipple->second -= 30.0 * test_anatomy::body_frame(c).up;
+  const auto moved = match_landmarks(m, named);
+  const auto fit = [&](int threads) {
+    ScanTarget scan(c.scan);
+    FitOptions o;
+    o.threads = threads;
+    return register_template(m, scan, moved, o);
+  };
+  const FitResult one = fit(1);
+  ASSERT_TRUE(one.summary.usable()) << one.summary.message;
+  const auto& checks = one.summary.landmark_checks;
+  const auto right = std::find_if(checks.begin(), checks.end(), [](const LandmarkCheck& k) { return k.name == "nipple_R"; });
+  ASSERT_NE(right, checks.end());
+  EXPECT_TRUE(right->flagged);
+  for (int threads : {2, 3}) {
+    const FitResult many = fit(threads);
+    EXPECT_EQ(many.summary.warnings, one.summary.warnings) << threads;
+    EXPECT_EQ(many.vertices, one.vertices) << threads;
+    EXPECT_EQ(many.params.alpha, one.params.alpha) << threads;
+    ASSERT_EQ(many.summary.landmark_checks.size(), checks.size()) << threads;
+    for (size_t i = 0; i < checks.size(); ++i) {
+      const auto &a = checks[i], &b = many.summary.landmark_checks[i];
+      EXPECT_EQ(b.distance_mm, a.distance_mm) << a.name << threads;
+      EXPECT_EQ(b.predicted_distance_mm, a.predicted_distance_mm) << a.name << threads;
+      EXPECT_EQ(b.anatomy_distance_mm, a.anatomy_distance_mm) << a.name << threads;
+      EXPECT_EQ(b.anatomy_tolerance_mm, a.anatomy_tolerance_mm) << a.name << threads;
+      EXPECT_EQ(b.anatomy, a.anatomy) << a.name << threads;
+      EXPECT_EQ(b.factor, a.factor) << a.name << threads;
+      EXPECT_EQ(b.flagged, a.flagged) << a.name << threads;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace breastfit::fit
 

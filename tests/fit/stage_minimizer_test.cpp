@@ -136,7 +136,8 @@ TEST(StageMinimizer, RecordsTheFitPhasesInOrder) {
     sum += p.seconds;
   }
   EXPECT_EQ(phases, (std::vector<std::string>{"initialization", "stage:landmark_pose", "stage:rigid", "stage:pose",
-                                              "stage:shape", "stage:refine", "final_state", "surface_detail"}));
+                                              "stage:shape", "stage:refine", "final_state", "surface_detail",
+                                              "landmark_checks"}));
   EXPECT_LE(sum, r.summary.seconds * 1.0001 + 1e-6);
 }
 

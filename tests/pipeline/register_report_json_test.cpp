@@ -35,7 +35,7 @@ TEST(RegisterReportJson, LayoutAndNumbersOfARealRegistration) {
   EXPECT_EQ(j["converged"], r.fit.summary.converged());
   // Every phase of the pipeline is timed, the fit's own in between.
   for (const char* phase : {"scan_preparation", "index_build", "initialization", "stage:refine", "surface_detail",
-                            "transfer", "measurements"})
+                            "landmark_checks", "transfer", "measurements"})
     EXPECT_TRUE(j["timings_s"].contains(phase)) << phase;
   EXPECT_NEAR(j["timings_s"]["index_build"].get<double>() + r.fit.summary.seconds, r.time_s, 0.01);
   EXPECT_EQ(j["time_s"], r.time_s);

@@ -81,7 +81,7 @@ struct Verdict {
 
 /// Wall time of one phase of the work (fit phases, and the pipeline's around them).
 struct PhaseTime {
-  std::string phase;  ///< "scan_preparation", "index_build", "initialization", "stage:<name>", "surface_detail", ...
+  std::string phase;  ///< "scan_preparation", "index_build", "initialization", "stage:<name>", "surface_detail", "landmark_checks", ...
   double seconds = 0;
 };
 

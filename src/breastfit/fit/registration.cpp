@@ -468,7 +468,7 @@ std::string termination_message(const FitSummary& s) {
 
 void finish_fit(const model::RiggedModel& model, ScanTarget& scan, Problem& problem, const model::PoseParams& params,
                 const std::vector<LandmarkTarget>& landmarks, const FitOptions& options, const PlacedCheck& placed,
-                FitResult& result);
+                FitResult& result, double checks_s);
 void finish_surface(const model::RiggedModel& model, ScanTarget& scan, Problem& problem, const model::PoseParams& params,
                     const FitOptions& options, FitResult& result);
 void finish_checks(const model::RiggedModel& model, const std::vector<LandmarkTarget>& landmarks,
@@ -617,17 +617,56 @@ class OutwardScanNormals {
   Points flipped_;
 };
 
+// The scan searches of the anatomy checks around one given nipple: the breast's tip and the
+// nipple's bump around where the other landmarks put it (the fitted one without predictions), the
+// breast's apex around it (the given one without predictions; searched only with the fitted body's
+// axes and sternum frame). nullopt where not found.
+struct NippleSearch {
+  std::optional<Vec3> tip, apex;
+  std::optional<NippleBump> bump;
+};
+
+// The searches of every given nipple (empty slots for the other landmarks). They read only the
+// scan and the fitted model, and each writes its own slot: with options.threads >= 2 the two
+// nipples are searched side by side, the same bits as one after the other.
+std::vector<NippleSearch> search_nipples(const model::RiggedModel& model, const Points& V,
+                                         const model::PoseParams& params, const ScanTarget& scan,
+                                         const std::optional<BodyAxes>& axes, const std::vector<LandmarkTarget>& given,
+                                         const std::vector<Vec3>& predicted, const FitOptions& options,
+                                         OutwardScanNormals& scan_N) {
+  std::vector<NippleSearch> out(given.size());
+  std::vector<size_t> nipples;
+  for (size_t i = 0; i < given.size(); ++i)
+    if (given[i].name == "nipple_R" || given[i].name == "nipple_L") nipples.push_back(i);
+  if (nipples.empty()) return out;
+  const Points& N = scan_N;  // computed here once, read by both nipples
+  const Points& S = scan.mesh().V;
+  for_each_chunk(static_cast<Index>(nipples.size()), 1, options.threads, [&](Index chunk, Index, Index) {
+    const size_t i = nipples[static_cast<size_t>(chunk)];
+    const LandmarkTarget& t = given[i];
+    const Vec3 near =
+        i < predicted.size() ? predicted[i] : model_landmark_position(model, t.model_landmark, V, params);
+    NippleSearch& found = out[i];
+    found.tip = breast_tip_on_scan(S, S, N, near);
+    if (axes && fitted_sternum_frame(model, V, params, t.name.back()))
+      found.apex = nipple_apex_on_scan(S, S, N, i < predicted.size() ? predicted[i] : t.position, axes->up);
+    found.bump = nipple_bump_on_scan(scan.index(), N, near);
+  });
+  return out;
+}
+
 // Session 13 (docs/REGISTRATION.md): the prediction and the anatomical check agreeing
 // (combined_check.h), the nipples against the breast's apex (nipple_apex_check.h), the xiphoid
 // against the lowest breast points' height (xiphoid_check.h). Each takes a landmark's anatomical
 // check when it flags it and is farther beyond than the one there; `out` holds the earlier checks,
-// `scan_N` the scan's outward normals (computed on first use when the sign is -1).
+// `nipples` the apexes found (search_nipples).
 // A pair's member not blamed by its check (`unblamed`, check_pairs) enters the combined check with
 // the pair's asymmetry when it has no check of its own (session 16).
 void check_agreement(const model::RiggedModel& model, const Points& V, const model::PoseParams& params,
-                     const ScanTarget& scan, const std::optional<BodyAxes>& axes,
+                     const std::optional<BodyAxes>& axes,
                      const std::vector<LandmarkTarget>& given, const std::vector<Vec3>& predicted,
-                     const FitOptions& options, OutwardScanNormals& scan_N, std::vector<std::optional<AnatomyCheck>>& out,
+                     const FitOptions& options, const std::vector<NippleSearch>& nipples,
+                     std::vector<std::optional<AnatomyCheck>>& out,
                      const std::vector<std::optional<AnatomyCheck>>& unblamed) {
   std::vector<std::optional<AnatomyCheck>> before = out;
   for (size_t i = 0; i < before.size() && i < unblamed.size(); ++i)
@@ -647,10 +686,8 @@ void check_agreement(const model::RiggedModel& model, const Points& V, const mod
     const std::string& name = given[i].name;
     if (name != "nipple_R" && name != "nipple_L") continue;
     const auto frame = fitted_sternum_frame(model, V, params, name.back());
-    if (!frame) continue;
-    const Vec3 near = i < predicted.size() ? predicted[i] : given[i].position;
-    const auto apex = nipple_apex_on_scan(scan.mesh().V, scan.mesh().V, scan_N, near, axes->up);
-    if (!apex) continue;
+    const auto& apex = nipples[i].apex;
+    if (!frame || !apex) continue;
     const double tip_ratio = before[i] ? before[i]->distance_mm / before[i]->tolerance_mm : 0.0;
     const NippleApexCheck c = check_nipple_apex(*frame, given[i].position, *apex, tip_ratio);
     keep_if_worse(out[i], AnatomyCheck{c.distance_mm, c.tolerance_mm, "the breast's apex on the scan"});
@@ -667,17 +704,14 @@ void check_agreement(const model::RiggedModel& model, const Points& V, const mod
 }
 
 // Session 15 (docs/REGISTRATION.md): each given nipple against the nipple's own bump on the scan
-// (nipple_bump_check.h), searched around its prediction (the fitted one without predictions).
-void check_nipple_bumps(const model::RiggedModel& model, const Points& V, const model::PoseParams& params,
-                        const ScanTarget& scan, const std::vector<LandmarkTarget>& given,
-                        const std::vector<Vec3>& predicted, const FitOptions& options, OutwardScanNormals& scan_N,
-                        std::vector<std::optional<AnatomyCheck>>& out) {
+// (nipple_bump_check.h), searched around its prediction (the fitted one without predictions;
+// search_nipples).
+void check_nipple_bumps(const std::vector<LandmarkTarget>& given, const FitOptions& options,
+                        const std::vector<NippleSearch>& nipples, std::vector<std::optional<AnatomyCheck>>& out) {
   for (size_t i = 0; i < given.size(); ++i) {
     const LandmarkTarget& t = given[i];
-    if (t.name != "nipple_R" && t.name != "nipple_L") continue;
-    const Vec3 near = i < predicted.size() ? predicted[i] : model_landmark_position(model, t.model_landmark, V, params);
-    const auto bump = nipple_bump_on_scan(scan.index(), scan_N, near);
-    if (!bump) continue;
+    const auto& bump = nipples[i].bump;
+    if ((t.name != "nipple_R" && t.name != "nipple_L") || !bump) continue;
     const NippleBumpCheck c = check_nipple_bump(t.position, *bump, options.landmark_check_mm);
     keep_if_worse(out[i], AnatomyCheck{c.distance_mm, c.tolerance_mm, "the nipple's bump on the scan"});
   }
@@ -700,13 +734,16 @@ std::vector<std::optional<AnatomyCheck>> check_anatomy(const model::RiggedModel&
   const Points& V = ev.vertices();
   const auto axes = fitted_body_axes(model, V, mesh::vertex_normals(V, model.rest.F), params);
   OutwardScanNormals scan_N(scan);  // the index's own normals (negated once, if need be)
+  const std::vector<NippleSearch> nipples =
+      search_nipples(model, V, params, scan, axes, given, predicted, options, scan_N);
   for (size_t i = 0; i < given.size(); ++i) {
     const LandmarkTarget& t = given[i];
-    const Vec3 near = i < predicted.size() ? predicted[i] : model_landmark_position(model, t.model_landmark, V, params);
     if (t.name == "nipple_R" || t.name == "nipple_L") {
-      if (const auto tip = breast_tip_on_scan(scan.mesh().V, scan.mesh().V, scan_N, near))
+      if (const auto& tip = nipples[i].tip)
         out[i] = AnatomyCheck{(*tip - t.position).norm(), options.nipple_tip_check_mm, "the breast's tip on the scan"};
     } else if (t.name == "sternal_notch" && axes) {
+      const Vec3 near =
+          i < predicted.size() ? predicted[i] : model_landmark_position(model, t.model_landmark, V, params);
       if (const auto notch = check_notch_on_midline(scan.mesh().V, given, near, axes->up, axes->front, t.position,
                                                     options.notch_check_mm))
         out[i] = AnatomyCheck{notch->distance_mm, notch->tolerance_mm, "the jugular notch on the scan's midline"};
@@ -715,8 +752,8 @@ std::vector<std::optional<AnatomyCheck>> check_anatomy(const model::RiggedModel&
   std::vector<std::optional<AnatomyCheck>> unblamed(given.size());
   check_pairs(given, predicted, options, out, unblamed);
   check_insertions(model, V, params, given, predicted, options, out);
-  check_agreement(model, V, params, scan, axes, given, predicted, options, scan_N, out, unblamed);
-  check_nipple_bumps(model, V, params, scan, given, predicted, options, scan_N, out);
+  check_agreement(model, V, params, axes, given, predicted, options, nipples, out, unblamed);
+  check_nipple_bumps(given, options, nipples, out);
   return out;
 }
 
@@ -902,9 +939,15 @@ FitResult register_template(const model::RiggedModel& model, ScanTarget& scan, s
   } else {
     summary.termination = minimize_stages(*problem_ptr, stages, params, summary, on_iteration);
   }
+  // The placed landmarks' checks are the phase "landmark_checks": hold_off_misplaced without the
+  // refine stage it may run again (timed as its own "stage:refine"), and finish_checks.
+  Timer checks;
+  const size_t phases_before = summary.timings.size();
   const PlacedCheck placed =
       hold_off_misplaced(model, scan, problem_ptr, params, landmarks, options, summary, on_iteration);
-  finish_fit(model, scan, *problem_ptr, params, landmarks, options, placed, result);
+  double checks_s = checks.seconds();
+  for (size_t k = phases_before; k < summary.timings.size(); ++k) checks_s -= summary.timings[k].seconds;
+  finish_fit(model, scan, *problem_ptr, params, landmarks, options, placed, result, checks_s);
   summary.seconds = timer.seconds();
   return result;
 }
@@ -975,12 +1018,15 @@ FitResult refit_template(const model::RiggedModel& model, ScanTarget& scan, std:
 namespace {
 
 // The end of every fit: the final state at the final threshold, the verdict, the surface detail
-// and the landmark checks.
+// and the landmark checks; the phase "landmark_checks" last, `checks_s` (the checks' time before)
+// with finish_checks' own.
 void finish_fit(const model::RiggedModel& model, ScanTarget& scan, Problem& problem, const model::PoseParams& params,
                 const std::vector<LandmarkTarget>& landmarks, const FitOptions& options, const PlacedCheck& placed,
-                FitResult& result) {
+                FitResult& result, double checks_s) {
   finish_surface(model, scan, problem, params, options, result);
+  Timer phase;
   finish_checks(model, landmarks, options, placed, result);
+  result.summary.timings.push_back({"landmark_checks", checks_s + phase.seconds()});
 }
 
 // finish_fit's first part: the final state at the final threshold, the verdict, the surface detail.

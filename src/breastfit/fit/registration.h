@@ -52,6 +52,8 @@ std::vector<LandmarkTarget> select_landmarks(std::vector<LandmarkTarget> targets
 /// Orients the scan's normals (ScanTarget::set_normal_sign) to agree with the template's.
 /// How the solver ended is summary.termination; whether the result is usable is summary.verdict
 /// (an unusable fit is reported there, not thrown). `on_iteration` may abort the run.
+/// summary.timings end with "landmark_checks" (the given landmarks' checks; a refine stage they
+/// run again is its own "stage:refine").
 /// \throws InvalidInput for invalid options.
 FitResult register_template(const model::RiggedModel& model, ScanTarget& scan,
                             std::vector<LandmarkTarget> landmarks, const FitOptions& options,
