@@ -16,6 +16,7 @@
 #include "breastfit/spatial/detail/bvh.h"
 #include "breastfit/spatial/detail/bvh4.h"
 #include "breastfit/spatial/detail/leaf_blocks.h"
+#include "breastfit/spatial/detail/parallel_for.h"
 #include "breastfit/spatial/detail/point_triangle_kernel.h"
 #include "breastfit/spatial/detail/triangle_tables.h"
 
@@ -93,14 +94,20 @@ struct ClosestPointIndex::Impl {
 
   void build(int threads) {
     detail::validate_triangle_mesh(mesh, "ClosestPointIndex");
-    face_flags = detail::triangle_flags(mesh, &vertex_boundary, threads);
-    vertex_normals = mesh::vertex_normals(mesh);
+    // Two independent halves, side by side with more than one thread: the faces in Morton order
+    // and the tree's topology over them; the faces' flags and the vertex normals.
     std::vector<std::uint32_t> prims;
-    {
-      detail::MortonSorted sorted = detail::triangle_morton_order(mesh, threads);
-      detail::build_morton_topology(sorted.codes, kMaxLeafSize, nodes, threads);
-      prims = std::move(sorted.prims);
-    }
+    detail::parallel_invoke(
+        threads,
+        [&] {
+          detail::MortonSorted sorted = detail::triangle_morton_order(mesh, threads);
+          detail::build_morton_topology(sorted.codes, kMaxLeafSize, nodes, threads);
+          prims = std::move(sorted.prims);
+        },
+        [&] {
+          face_flags = detail::triangle_flags(mesh, &vertex_boundary, threads);
+          vertex_normals = mesh::vertex_normals(mesh);
+        });
     blocks = detail::build_leaf_blocks(mesh, face_flags, prims, nodes, threads);
     detail::fit_inner_boxes(nodes);
     wide = detail::collapse_to_bvh4(nodes);
