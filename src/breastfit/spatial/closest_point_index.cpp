@@ -94,19 +94,21 @@ struct ClosestPointIndex::Impl {
 
   void build(int threads) {
     detail::validate_triangle_mesh(mesh, "ClosestPointIndex");
-    // Two independent halves, side by side with more than one thread: the faces in Morton order
-    // and the tree's topology over them; the faces' flags and the vertex normals.
+    // Two independent halves, side by side with more than one thread: the faces' flags and the
+    // vertex normals; the faces in Morton order and the tree's topology over them. (With one
+    // thread in this order, the order of the allocations as before: a build repeated in the
+    // process reuses the heap's freed blocks instead of growing it.)
     std::vector<std::uint32_t> prims;
     detail::parallel_invoke(
         threads,
         [&] {
+          face_flags = detail::triangle_flags(mesh, &vertex_boundary, threads);
+          vertex_normals = mesh::vertex_normals(mesh);
+        },
+        [&] {
           detail::MortonSorted sorted = detail::triangle_morton_order(mesh, threads);
           detail::build_morton_topology(sorted.codes, kMaxLeafSize, nodes, threads);
           prims = std::move(sorted.prims);
-        },
-        [&] {
-          face_flags = detail::triangle_flags(mesh, &vertex_boundary, threads);
-          vertex_normals = mesh::vertex_normals(mesh);
         });
     blocks = detail::build_leaf_blocks(mesh, face_flags, prims, nodes, threads);
     detail::fit_inner_boxes(nodes);
