@@ -33,5 +33,25 @@ TEST(ParallelForChunks, EveryIndexOnceInItsFixedChunk) {
   EXPECT_EQ(chunk_count(17, 16), 2u);
 }
 
+TEST(ParallelInvoke, EachTaskOnceInOrderOnOneThread) {
+  for (const int threads : {0, 1, 2, 3}) {
+    std::vector<int> order;
+    int first = 0, second = 0;
+    parallel_invoke(
+        threads,
+        [&] {
+          ++first;
+          if (threads <= 1) order.push_back(1);
+        },
+        [&] {
+          ++second;
+          if (threads <= 1) order.push_back(2);
+        });
+    EXPECT_EQ(first, 1) << threads << " threads";
+    EXPECT_EQ(second, 1) << threads << " threads";
+    if (threads <= 1) EXPECT_EQ(order, (std::vector<int>{1, 2}));
+  }
+}
+
 }  // namespace
 }  // namespace breastfit::spatial::detail

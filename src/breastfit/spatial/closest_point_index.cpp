@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <limits>
 #include <string>
 #include <utility>
@@ -16,6 +15,7 @@
 #include "breastfit/mesh/normals.h"
 #include "breastfit/spatial/detail/bvh.h"
 #include "breastfit/spatial/detail/bvh4.h"
+#include "breastfit/spatial/detail/leaf_blocks.h"
 #include "breastfit/spatial/detail/parallel_for.h"
 #include "breastfit/spatial/detail/point_triangle_kernel.h"
 #include "breastfit/spatial/detail/triangle_tables.h"
@@ -25,27 +25,9 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-/// Leaves hold at most this many triangles (BVH build option).
-constexpr int kMaxLeafSize = 4;
-
-/// A leaf's data is one self-contained block of whole 64-byte lines: this header, then the
-/// leaf's distinct vertices (3 doubles each, or 3 floats each when every coordinate of the leaf
-/// is exactly a float — scans stored in float — which loses nothing and takes half the bytes).
-/// Compared with a vertex-index indirection this needs no second memory hop, and compared with
-/// 3 corners per triangle it stores shared corners once (the query cost on a large mesh is
-/// dominated by cache misses).
-struct LeafHeader {
-  std::uint8_t count;                        ///< triangles in the leaf
-  std::uint8_t num_vertices;                 ///< distinct corners stored after the header
-  std::uint8_t float_coords;                 ///< 1: the corners are stored as floats (exact)
-  std::uint8_t flags[kMaxLeafSize];          ///< detail::kFlag* per triangle
-  std::uint8_t corner[kMaxLeafSize][3];      ///< index into the block's vertices
-  std::int32_t face[kMaxLeafSize];           ///< original face index
-};
-constexpr std::size_t kHeaderBytes = (sizeof(LeafHeader) + 7) / 8 * 8;
-struct alignas(64) CacheLine {
-  unsigned char bytes[64];
-};
+using detail::kLeafHeaderBytes;
+using detail::kMaxLeafSize;
+using detail::LeafHeader;
 
 /// Running best answer of one query.
 struct Best {
@@ -99,7 +81,7 @@ struct ClosestPointIndex::Impl {
   // The tree the queries walk: the binary tree collapsed to four children per node (a leaf
   // slot's ref is ~(first line of its block), its count the block's lines).
   detail::Bvh4Nodes wide;
-  std::vector<CacheLine, detail::UninitCacheAlignedAllocator<CacheLine>> blocks;
+  detail::LeafBlocks blocks;  // see detail/leaf_blocks.h
   std::vector<std::uint8_t> face_flags;    // by face: detail::kFlag*
   std::vector<std::uint8_t> vertex_boundary;  // by vertex: 1 on an open-boundary edge
   Points vertex_normals;                   // #V by 3 area-weighted unit normals (or zero)
@@ -112,181 +94,26 @@ struct ClosestPointIndex::Impl {
 
   void build(int threads) {
     detail::validate_triangle_mesh(mesh, "ClosestPointIndex");
-    face_flags = detail::triangle_flags(mesh, &vertex_boundary, threads);
-    vertex_normals = mesh::vertex_normals(mesh);
+    // Two independent halves, side by side with more than one thread: the faces' flags and the
+    // vertex normals; the faces in Morton order and the tree's topology over them. (With one
+    // thread in this order, the order of the allocations as before: a build repeated in the
+    // process reuses the heap's freed blocks instead of growing it.)
     std::vector<std::uint32_t> prims;
-    {
-      detail::MortonSorted sorted = detail::triangle_morton_order(mesh, threads);
-      detail::build_morton_topology(sorted.codes, kMaxLeafSize, nodes, threads);
-      prims = std::move(sorted.prims);
-    }
-    build_leaf_blocks(prims, threads);
+    detail::parallel_invoke(
+        threads,
+        [&] {
+          face_flags = detail::triangle_flags(mesh, &vertex_boundary, threads);
+          vertex_normals = mesh::vertex_normals(mesh);
+        },
+        [&] {
+          detail::MortonSorted sorted = detail::triangle_morton_order(mesh, threads);
+          detail::build_morton_topology(sorted.codes, kMaxLeafSize, nodes, threads);
+          prims = std::move(sorted.prims);
+        });
+    blocks = detail::build_leaf_blocks(mesh, face_flags, prims, nodes, threads);
     detail::fit_inner_boxes(nodes);
     wide = detail::collapse_to_bvh4(nodes);
     detail::BvhNodes().swap(nodes);  // not needed for queries
-  }
-
-  /// Writes leaf node `n`'s block at lines [line, line + lines) of `blocks` (header `h`, then the
-  /// corners `verts[0, nv)`), sets its box (the bounds of those vertices rounded outward to float
-  /// = the union of its triangles' boxes) and points the node at the block.
-  void write_leaf_block(detail::BvhNode& n, const LeafHeader& h, const Index* verts, int nv,
-                        std::size_t line, std::size_t lines) {
-    const double* V = mesh.V.data();
-    unsigned char* base = blocks[line].bytes;
-    std::memset(blocks[line + lines - 1].bytes, 0, 64);  // deterministic padding
-    std::memset(base, 0, kHeaderBytes);
-    std::memcpy(base, &h, sizeof(LeafHeader));
-    auto* coords = reinterpret_cast<double*>(base + kHeaderBytes);
-    auto* float_coords = reinterpret_cast<float*>(base + kHeaderBytes);
-    double lo[3] = {kInf, kInf, kInf}, hi[3] = {-kInf, -kInf, -kInf};
-    for (int j = 0; j < nv; ++j) {
-      const double* p = V + 3 * static_cast<std::ptrdiff_t>(verts[j]);
-      for (int k = 0; k < 3; ++k) {
-        if (h.float_coords) {
-          float_coords[3 * j + k] = static_cast<float>(p[k]);
-        } else {
-          coords[3 * j + k] = p[k];
-        }
-        lo[k] = std::min(lo[k], p[k]);
-        hi[k] = std::max(hi[k], p[k]);
-      }
-    }
-    for (int k = 0; k < 3; ++k) {
-      n.lo[k] = detail::round_down_to_float(lo[k]);
-      n.hi[k] = detail::round_up_to_float(hi[k]);
-    }
-    n.first = static_cast<std::int32_t>(line);
-    n.count = static_cast<std::int32_t>(lines);
-  }
-
-  /// The header of leaf `n` (slots of `prims`) but its corners.
-  LeafHeader leaf_header(const detail::BvhNode& n, const std::vector<std::uint32_t>& prims) const {
-    LeafHeader h{};
-    h.count = static_cast<std::uint8_t>(n.count);
-    for (int t = 0; t < n.count; ++t) {
-      const auto f = static_cast<std::int32_t>(prims[static_cast<std::size_t>(n.first + t)]);
-      h.face[t] = f;
-      h.flags[t] = face_flags[static_cast<std::size_t>(f)];
-    }
-    return h;
-  }
-
-  static std::size_t block_lines(int num_vertices, bool float_coords) {
-    const std::size_t bytes_per_vertex = float_coords ? 12 : 24;
-    return (kHeaderBytes + bytes_per_vertex * static_cast<std::size_t>(num_vertices) + 63) / 64;
-  }
-
-  /// Whether every coordinate of the vertices verts[0, nv) is exactly a float.
-  bool float_exact(const Index* verts, int nv) const {
-    const double* V = mesh.V.data();
-    for (int j = 0; j < nv; ++j) {
-      const double* p = V + 3 * static_cast<std::ptrdiff_t>(verts[j]);
-      for (int k = 0; k < 3; ++k) {
-        if (static_cast<double>(static_cast<float>(p[k])) != p[k]) return false;
-      }
-    }
-    return true;
-  }
-
-  /// Replaces each leaf's slot range by its block (see LeafHeader) and sets its box. A leaf's
-  /// distinct corners are in first-use order. One thread: one pass in node order, corners
-  /// deduplicated with a per-vertex stamp. More: two passes over chunks of leaves, the blocks'
-  /// sizes and then (at offsets from their prefix sums) the blocks, corners deduplicated within
-  /// the leaf. Both give the same bytes.
-  void build_leaf_blocks(const std::vector<std::uint32_t>& prims, int threads) {
-    if (threads <= 1) {
-      build_leaf_blocks_serial(prims);
-      return;
-    }
-    std::vector<std::int32_t> leaves;
-    leaves.reserve(nodes.size() / 2 + 1);
-    for (std::size_t i = 0; i < nodes.size(); ++i)
-      if (i != 1 && nodes[i].is_leaf()) leaves.push_back(static_cast<std::int32_t>(i));
-    constexpr std::size_t kLeafChunk = 2048;
-    // Distinct corners of a leaf's triangles in first-use order, their number returned.
-    const Index* F = mesh.F.data();
-    auto corners = [&](const detail::BvhNode& n, Index* verts, LeafHeader* h) {
-      int nv = 0;
-      for (int t = 0; t < n.count; ++t) {
-        const auto f = static_cast<std::ptrdiff_t>(prims[static_cast<std::size_t>(n.first + t)]);
-        for (int k = 0; k < 3; ++k) {
-          const Index v = F[3 * f + k];
-          int slot = 0;
-          while (slot < nv && verts[slot] != v) ++slot;
-          if (slot == nv) verts[nv++] = v;
-          if (h) h->corner[t][k] = static_cast<std::uint8_t>(slot);
-        }
-      }
-      return nv;
-    };
-    std::vector<std::size_t> start(leaves.size() + 1, 0);
-    detail::parallel_for_chunks(leaves.size(), kLeafChunk, threads, [&](std::size_t, std::size_t b, std::size_t e) {
-      Index verts[3 * kMaxLeafSize];
-      for (std::size_t l = b; l < e; ++l) {
-        const int nv = corners(nodes[static_cast<std::size_t>(leaves[l])], verts, nullptr);
-        start[l + 1] = block_lines(nv, float_exact(verts, nv));
-      }
-    });
-    for (std::size_t l = 0; l < leaves.size(); ++l) start[l + 1] += start[l];
-    blocks.resize(start.back());  // uninitialised: every line is written below
-    detail::parallel_for_chunks(leaves.size(), kLeafChunk, threads, [&](std::size_t, std::size_t b, std::size_t e) {
-      Index verts[3 * kMaxLeafSize];
-      for (std::size_t l = b; l < e; ++l) {
-        detail::BvhNode& n = nodes[static_cast<std::size_t>(leaves[l])];
-        LeafHeader h = leaf_header(n, prims);
-        const int nv = corners(n, verts, &h);
-        h.num_vertices = static_cast<std::uint8_t>(nv);
-        h.float_coords = float_exact(verts, nv) ? 1 : 0;
-        write_leaf_block(n, h, verts, nv, start[l], start[l + 1] - start[l]);
-      }
-    });
-  }
-
-  void build_leaf_blocks_serial(const std::vector<std::uint32_t>& prims) {
-    // Upper bound: every leaf full with 3 distinct corners per triangle. The buffer is not
-    // initialised, so this only claims address space; lines are written (and paged in) once,
-    // in order.
-    std::size_t max_lines = 0;
-    for (const detail::BvhNode& n : nodes) {
-      if (n.is_leaf()) max_lines += block_lines(3 * n.count, false);
-    }
-    blocks.resize(max_lines);
-    std::size_t used = 0;
-    const Index* F = mesh.F.data();
-    // Distinct corners of a leaf, in first-use order: seen[v] = (leaf number << 4) | slot of
-    // v in the current leaf's block (leaf numbers start at 1, so 0 is "not seen").
-    static_assert(3 * kMaxLeafSize <= 16, "corner slots must fit in 4 bits");
-    std::vector<std::uint32_t> seen(static_cast<std::size_t>(mesh.num_vertices()), 0);
-    std::uint32_t leaf_number = 0;
-    for (std::size_t i = 0; i < nodes.size(); ++i) {
-      detail::BvhNode& n = nodes[i];
-      if (i == 1 || !n.is_leaf()) continue;  // padding, inner node
-      if (++leaf_number >= (1u << 28)) {  // stamps would overflow: start over
-        std::fill(seen.begin(), seen.end(), 0u);
-        leaf_number = 1;
-      }
-      LeafHeader h = leaf_header(n, prims);
-      Index verts[3 * kMaxLeafSize];
-      int nv = 0;
-      for (int t = 0; t < n.count; ++t) {
-        const Index f = h.face[t];
-        for (int k = 0; k < 3; ++k) {
-          const Index v = F[3 * static_cast<std::ptrdiff_t>(f) + k];
-          std::uint32_t& s = seen[static_cast<std::size_t>(v)];
-          if ((s >> 4) != leaf_number) {
-            s = (leaf_number << 4) | static_cast<std::uint32_t>(nv);
-            verts[nv++] = v;
-          }
-          h.corner[t][k] = static_cast<std::uint8_t>(s & 15u);
-        }
-      }
-      h.num_vertices = static_cast<std::uint8_t>(nv);
-      h.float_coords = float_exact(verts, nv) ? 1 : 0;
-      const std::size_t lines = block_lines(nv, h.float_coords != 0);
-      write_leaf_block(n, h, verts, nv, used, lines);
-      used += lines;
-    }
-    blocks.resize(used);  // shrinks in place
   }
 
   const double* vertex(Index face, int corner) const {
@@ -314,10 +141,10 @@ struct ClosestPointIndex::Impl {
                    double slack) const {
     const unsigned char* base = blocks[static_cast<std::size_t>(line)].bytes;
     const auto* h = reinterpret_cast<const LeafHeader*>(base);
-    const double* coords = reinterpret_cast<const double*>(base + kHeaderBytes);
+    const double* coords = reinterpret_cast<const double*>(base + kLeafHeaderBytes);
     double widened[9 * kMaxLeafSize];
     if (h->float_coords) {  // exact: the stored floats are the mesh's doubles
-      const auto* f = reinterpret_cast<const float*>(base + kHeaderBytes);
+      const auto* f = reinterpret_cast<const float*>(base + kLeafHeaderBytes);
       for (int j = 0; j < 3 * h->num_vertices; ++j) widened[j] = f[j];
       coords = widened;
     }
@@ -446,8 +273,8 @@ struct ClosestPointIndex::Impl {
       }
       const unsigned char* base = blocks[static_cast<std::size_t>(~ref)].bytes;
       const auto* h = reinterpret_cast<const LeafHeader*>(base);
-      const auto* dc = reinterpret_cast<const double*>(base + kHeaderBytes);
-      const auto* fc = reinterpret_cast<const float*>(base + kHeaderBytes);
+      const auto* dc = reinterpret_cast<const double*>(base + kLeafHeaderBytes);
+      const auto* fc = reinterpret_cast<const float*>(base + kLeafHeaderBytes);
       std::uint32_t inside = 0;  // bit j: corner slot j within reach
       for (int j = 0; j < h->num_vertices; ++j) {
         double s = 0.0;

@@ -13,4 +13,8 @@ void parallel_for_chunks(std::size_t n, std::size_t chunk_size, int threads,
   run_chunks(chunks, t, [&](std::size_t c) { fn(c, c * chunk_size, std::min(n, (c + 1) * chunk_size)); });
 }
 
+void parallel_invoke(int threads, const std::function<void()>& first, const std::function<void()>& second) {
+  run_chunks(2, std::min(threads, 2), [&](std::size_t c) { c == 0 ? first() : second(); });
+}
+
 }  // namespace breastfit::spatial::detail

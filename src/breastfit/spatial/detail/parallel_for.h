@@ -15,6 +15,11 @@ void parallel_for_chunks(std::size_t n, std::size_t chunk_size, int threads,
                          const std::function<void(std::size_t chunk, std::size_t begin,
                                                   std::size_t end)>& fn);
 
+/// Calls `first` and `second`, two independent tasks that write nothing in common, side by
+/// side: on up to two threads when `threads` > 1 (each task on one thread, so loops inside a task
+/// run serially), else one after the other. Neither may throw.
+void parallel_invoke(int threads, const std::function<void()>& first, const std::function<void()>& second);
+
 /// Number of chunks of size `chunk_size` (> 0) covering [0, n).
 inline std::size_t chunk_count(std::size_t n, std::size_t chunk_size) {
   return (n + chunk_size - 1) / chunk_size;
