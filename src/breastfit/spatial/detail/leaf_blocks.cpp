@@ -195,6 +195,20 @@ LeafBlocks build_leaf_blocks(const TriangleMesh& mesh, const std::vector<std::ui
   const std::vector<std::uint8_t> vertex_float = float_vertices(mesh, threads);
   const std::size_t chunks = chunk_count(nodes.size(), kNodeChunk);
   auto is_leaf = [&](std::size_t i) { return i != 1 && nodes[i].is_leaf(); };  // nodes[1]: padding
+  // Writes the blocks of the leaves among nodes [b, e) from line `line` on; returns the line after them.
+  auto write_blocks = [&](std::size_t b, std::size_t e, std::size_t line) {
+    BlockBuilder builder(mesh, face_flags, prims, vertex_float);
+    LeafPlan p;
+    for (std::size_t i = b; i < e; ++i) {
+      if (!is_leaf(i)) continue;
+      BvhNode& n = nodes[i];
+      builder.look_ahead(static_cast<std::size_t>(n.first), static_cast<std::size_t>(n.first + n.count), true);
+      const std::size_t lines = builder.plan(n, p);
+      builder.write(p, lines, blocks.data(), line, n);
+      line += lines;
+    }
+    return line;
+  };
   if (threads <= 1 || chunks <= 1) {
     // One pass in node order. Upper bound: every leaf full with 3 distinct corners per triangle.
     // The buffer is not initialised, so this only claims address space; lines are written (and
@@ -203,18 +217,7 @@ LeafBlocks build_leaf_blocks(const TriangleMesh& mesh, const std::vector<std::ui
     for (std::size_t i = 0; i < nodes.size(); ++i)
       if (is_leaf(i)) max_lines += leaf_block_lines(3 * nodes[i].count, false);
     blocks.resize(max_lines);
-    BlockBuilder builder(mesh, face_flags, prims, vertex_float);
-    std::size_t used = 0;
-    LeafPlan p;
-    for (std::size_t i = 0; i < nodes.size(); ++i) {
-      if (!is_leaf(i)) continue;
-      BvhNode& n = nodes[i];
-      builder.look_ahead(static_cast<std::size_t>(n.first), static_cast<std::size_t>(n.first + n.count), true);
-      const std::size_t lines = builder.plan(n, p);
-      builder.write(p, lines, blocks.data(), used, n);
-      used += lines;
-    }
-    blocks.resize(used);  // shrinks in place
+    blocks.resize(write_blocks(0, nodes.size(), 0));  // shrinks in place
     return blocks;
   }
   // Two passes over fixed chunks of nodes: the lines of each chunk's blocks, then (at offsets
@@ -234,19 +237,8 @@ LeafBlocks build_leaf_blocks(const TriangleMesh& mesh, const std::vector<std::ui
   });
   for (std::size_t c = 0; c < chunks; ++c) start[c + 1] += start[c];
   blocks.resize(start.back());  // uninitialised: every line is written below
-  parallel_for_chunks(nodes.size(), kNodeChunk, threads, [&](std::size_t c, std::size_t b, std::size_t e) {
-    BlockBuilder builder(mesh, face_flags, prims, vertex_float);
-    LeafPlan p;
-    std::size_t line = start[c];
-    for (std::size_t i = b; i < e; ++i) {
-      if (!is_leaf(i)) continue;
-      BvhNode& n = nodes[i];
-      builder.look_ahead(static_cast<std::size_t>(n.first), static_cast<std::size_t>(n.first + n.count), true);
-      const std::size_t lines = builder.plan(n, p);
-      builder.write(p, lines, blocks.data(), line, n);
-      line += lines;
-    }
-  });
+  parallel_for_chunks(nodes.size(), kNodeChunk, threads,
+                      [&](std::size_t c, std::size_t b, std::size_t e) { write_blocks(b, e, start[c]); });
   return blocks;
 }
 
