@@ -68,15 +68,13 @@ Bvh build_morton(const std::vector<PrimBox>& boxes, int max_leaf) {
   }
   const MortonGrid grid = MortonGrid::over(cbox.lo, cbox.hi);
   std::vector<std::uint64_t> codes(n);
-  std::vector<std::uint32_t> order(n);
   for (std::int32_t i = 0; i < n; ++i) {
     const double c[3] = {0.5 * (boxes[i].lo[0] + boxes[i].hi[0]),
                          0.5 * (boxes[i].lo[1] + boxes[i].hi[1]),
                          0.5 * (boxes[i].lo[2] + boxes[i].hi[2])};
     codes[i] = grid.code(c);
-    order[i] = static_cast<std::uint32_t>(i);
   }
-  radix_sort_pairs(codes, order, 63);
+  const std::vector<std::uint32_t> order = radix_sort_order(codes, 63);
   bvh.prims.assign(order.begin(), order.end());
   bvh.max_depth = build_morton_topology(codes, max_leaf, bvh.nodes);
   for (std::size_t i = 0; i < bvh.nodes.size(); ++i) {

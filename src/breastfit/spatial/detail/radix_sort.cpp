@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <array>
-#include <cassert>
 #include <cstddef>
 #include <utility>
 
@@ -44,11 +43,13 @@ void lsd_passes(std::vector<std::uint64_t>& a, std::vector<std::uint64_t>& tmp, 
 
 }  // namespace
 
-void radix_sort_pairs(std::vector<std::uint64_t>& keys, std::vector<std::uint32_t>& values,
-                      int key_bits) {
-  assert(keys.size() == values.size());
+std::vector<std::uint32_t> radix_sort_order(std::vector<std::uint64_t>& keys, int key_bits) {
   const std::size_t n = keys.size();
-  if (n < 2) return;
+  std::vector<std::uint32_t> order(n);
+  if (n < 2) {
+    if (n == 1) order[0] = 0;
+    return order;
+  }
   key_bits = std::clamp(key_bits, 1, 64);
 
   // Sort one 64-bit word per key: (the key's top <= 32 bits) << 32 | input position. The
@@ -97,14 +98,13 @@ void radix_sort_pairs(std::vector<std::uint64_t>& keys, std::vector<std::uint32_
     }
   }
   std::vector<std::uint64_t> sorted_keys(n);
-  std::vector<std::uint32_t> sorted_values(n);
   for (std::size_t j = 0; j < n; ++j) {
     const std::uint32_t i = position(words[j]);
     sorted_keys[j] = keys[i];
-    sorted_values[j] = values[i];
+    order[j] = i;
   }
   keys.swap(sorted_keys);
-  values.swap(sorted_values);
+  return order;
 }
 
 }  // namespace breastfit::spatial::detail

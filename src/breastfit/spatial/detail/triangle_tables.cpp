@@ -141,9 +141,7 @@ bool feature_on_boundary(ClosestFeature feature, std::uint8_t flags, Index v0, I
 
 std::vector<std::uint32_t> morton_order(const Points& P) {
   const auto n = static_cast<std::size_t>(P.rows());
-  std::vector<std::uint32_t> order(n);
-  std::iota(order.begin(), order.end(), 0u);
-  if (n < 2) return order;
+  if (n < 2) return std::vector<std::uint32_t>(n, 0u);
   const Vec3 lo = P.colwise().minCoeff();
   const Vec3 hi = P.colwise().maxCoeff();
   const double ext = std::max((hi - lo).maxCoeff(), 1e-300);
@@ -157,8 +155,7 @@ std::vector<std::uint32_t> morton_order(const Points& P) {
     }
     keys[i] = code;
   }
-  radix_sort_pairs(keys, order, 63);  // stable: ties by row index
-  return order;
+  return radix_sort_order(keys, 63);  // stable: ties by row index
 }
 
 MortonSorted triangle_morton_order(const TriangleMesh& mesh, int threads) {
@@ -205,16 +202,14 @@ MortonSorted triangle_morton_order(const TriangleMesh& mesh, int threads) {
   const MortonGrid grid = MortonGrid::over(all.lo, all.hi);
   MortonSorted out;
   out.codes.resize(nf);
-  out.prims.resize(nf);
   parallel_for_chunks(n, kFaceChunk, threads, [&](std::size_t, std::size_t b, std::size_t e) {
     for (auto f = static_cast<Index>(b); f < static_cast<Index>(e); ++f) {
       double c[3];
       centre(f, c);
       out.codes[f] = grid.code(c);
-      out.prims[f] = static_cast<std::uint32_t>(f);
     }
   });
-  radix_sort_pairs(out.codes, out.prims, 63);
+  out.prims = radix_sort_order(out.codes, 63);
   return out;
 }
 
