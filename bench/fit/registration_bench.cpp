@@ -197,5 +197,3 @@ void BM_FullRegistration(benchmark::State& state) {
 BENCHMARK(BM_FullRegistration)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
 
 }  // namespace
-
-BENCHMARK_MAIN();

@@ -79,5 +79,3 @@ void BM_WriteOutputs(benchmark::State& state) {
 BENCHMARK(BM_WriteOutputs)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
-
-BENCHMARK_MAIN();

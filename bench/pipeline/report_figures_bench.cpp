@@ -109,5 +109,3 @@ void BM_ReportHtml(benchmark::State& state) {
 BENCHMARK(BM_ReportHtml)->Unit(benchmark::kMillisecond);
 
 }  // namespace
-
-BENCHMARK_MAIN();

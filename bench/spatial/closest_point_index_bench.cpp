@@ -185,5 +185,3 @@ void BM_BuildPlus100kBatch(benchmark::State& state) {
 BENCHMARK(BM_BuildPlus100kBatch)->Unit(benchmark::kMillisecond);
 
 }  // namespace
-
-BENCHMARK_MAIN();

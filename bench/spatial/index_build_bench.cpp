@@ -134,5 +134,3 @@ STAGE(BM_MortonTopology);
 BENCHMARK(BM_IndexBuildThreads)->Args({7, 1})->Args({7, 2})->UseRealTime()->Unit(benchmark::kMicrosecond);
 
 }  // namespace
-
-BENCHMARK_MAIN();
