@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <memory>
 #include <cmath>
 #include <vector>
 
@@ -10,7 +11,7 @@
 
 #include "breastfit/core/errors.h"
 #include "breastfit/fit/correspondences.h"
-#include "breastfit/mesh/adjacency.h"
+#include "breastfit/fit/detail_system.h"
 #include "breastfit/mesh/normals.h"
 
 namespace breastfit::fit {
@@ -41,22 +42,12 @@ SurfaceDetail fit_surface_detail(const Points& V, const Triangles& F, const Scan
   if (!o.enabled || o.passes <= 0 || n == 0) return out;
 
   const Points N = mesh::vertex_normals(V, F);
-  // μ · graph Laplacian + ε · I: fixed over the passes; the data weights change the diagonal only.
-  const auto edges = mesh::unique_edges(F, n);
-  std::vector<Eigen::Triplet<double>> trip;
-  trip.reserve(4 * edges.size() + n);
-  Eigen::VectorXd base_diag = Eigen::VectorXd::Constant(n, o.decay);
-  for (const auto& [a, b] : edges) {
-    trip.emplace_back(a, b, -o.smoothness);
-    trip.emplace_back(b, a, -o.smoothness);
-    base_diag[a] += o.smoothness;
-    base_diag[b] += o.smoothness;
-  }
-  for (Index i = 0; i < n; ++i) trip.emplace_back(i, i, 0.0);  // diagonal entries exist in the pattern
-  Eigen::SparseMatrix<double> A(n, n);
-  A.setFromTriplets(trip.begin(), trip.end());
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver;
-  solver.analyzePattern(A);
+  // μ · graph Laplacian + ε · I: fixed over the passes (and over the fits of the same template:
+  // leased, fit/detail_system.h); the data weights change the diagonal only.
+  const std::shared_ptr<DetailSystem> system = lease_detail_system(F, n, o.smoothness, o.decay);
+  Eigen::SparseMatrix<double>& A = system->A;
+  const Eigen::VectorXd& base_diag = system->base_diag;
+  auto& solver = system->solver;
 
   // The pairs' own IRLS weights (of the distance before any offset) are not used: the weights
   // below come from the residual the previous pass left.

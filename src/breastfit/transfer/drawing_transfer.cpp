@@ -49,11 +49,11 @@ DrawingTransfer::DrawingTransfer(const fit::ScanTarget& scan, const TriangleMesh
 
 DrawingTransfer::~DrawingTransfer() = default;
 
-DrawingTransfer::Projection DrawingTransfer::project(const Vec3& m, const Vec3& n) const {
+DrawingTransfer::Projection DrawingTransfer::project(const Vec3& m, const Vec3& n, Index* scan_face) const {
   Projection out;
   const double cos_max = std::cos(options_.max_normal_angle_deg * kPi / 180.0);
   if (options_.mode == ProjectionMode::ClosestPoint) {
-    const auto match = scan_.match(m, options_.max_distance_mm);
+    const auto match = scan_.match(m, options_.max_distance_mm, scan_face);
     if (!match || (options_.reject_scan_border && match->on_boundary)) return out;
     if (n.squaredNorm() > 0 && std::abs(n.dot(match->normal)) < cos_max) return out;
     out.supported = true;
@@ -95,9 +95,11 @@ void DrawingTransfer::set_body_axes(const Vec3& superior, const Vec3& anterior) 
   body_axes_ = std::make_pair(superior, anterior);
 }
 
-Vec3 DrawingTransfer::slide_into_fold(const Vec3& q) const {
-  auto cp = fitted_.closest(q);
-  if (!body_axes_ || options_.fold_facing_down_cos >= 1) return cp.point;
+Vec3 DrawingTransfer::slide_into_fold(const Vec3& q) const { return slide(q, -1).point; }
+
+spatial::ClosestPoint DrawingTransfer::slide(const Vec3& q, Index hint_face) const {
+  auto cp = fitted_.closest(q, hint_face);
+  if (!body_axes_ || options_.fold_facing_down_cos >= 1) return cp;
   const auto& [superior, anterior] = *body_axes_;
   constexpr double kStep = 1.0;  // mm along the surface per step
   for (double walked = 0; walked + kStep <= options_.fold_max_slide_mm; walked += kStep) {
@@ -107,7 +109,7 @@ Vec3 DrawingTransfer::slide_into_fold(const Vec3& q) const {
     if (back.norm() < 1e-6) break;
     cp = fitted_.closest(Vec3(cp.point + kStep * back.normalized()), cp.face);
   }
-  return cp.point;
+  return cp;
 }
 
 TransferredCurve DrawingTransfer::transfer(const std::string& name, bool closed, const Points& model_points_mm) const {
@@ -117,14 +119,22 @@ TransferredCurve DrawingTransfer::transfer(const std::string& name, bool closed,
   c.name = name;
   c.closed = closed;
 
+  // Every closest-point query below is warm-started (the same result, only faster): from the
+  // previous point's face along the curve (~spacing_mm away), then from the point's own face of
+  // the pass before. model_face: on the fitted surface; scan_face: on the scan (-1 = none yet).
   // 1. Resample on the fitted surface.
   Points model = resample_polyline(model_points_mm, closed, options_.spacing_mm);
   const Eigen::Index n = model.rows();
   Points normals(n, 3);
+  std::vector<Index> model_face(static_cast<size_t>(n), -1);
+  std::vector<Index> scan_face(static_cast<size_t>(n), -1);
+  Index hint = -1;
   for (Eigen::Index i = 0; i < n; ++i) {
-    const auto cp = fitted_.closest(slide_into_fold(model.row(i).transpose()));
+    const auto slid = slide(model.row(i).transpose(), hint);
+    const auto cp = fitted_.closest(slid.point, slid.face);
     model.row(i) = cp.point.transpose();
     normals.row(i) = fitted_.smooth_normal(cp).transpose();
+    hint = model_face[static_cast<size_t>(i)] = cp.face;
   }
 
   // 2. Project onto the scan where it supports the curve.
@@ -132,8 +142,10 @@ TransferredCurve DrawingTransfer::transfer(const std::string& name, bool closed,
   c.supported.assign(static_cast<size_t>(n), false);
   double sum = 0;
   Eigen::Index count = 0;
+  Index scan_hint = -1;
   for (Eigen::Index i = 0; i < n; ++i) {
-    const Projection p = project(model.row(i).transpose(), normals.row(i).transpose());
+    const Projection p = project(model.row(i).transpose(), normals.row(i).transpose(), &scan_hint);
+    scan_face[static_cast<size_t>(i)] = scan_hint;
     if (!p.supported) continue;
     c.supported[static_cast<size_t>(i)] = true;
     c.points.row(i) = p.point.transpose();
@@ -148,7 +160,14 @@ TransferredCurve DrawingTransfer::transfer(const std::string& name, bool closed,
     c.points = laplacian_smooth(c.points, closed, options_.smoothing_weight);
     for (Eigen::Index i = 0; i < n; ++i) {
       const Vec3 q = c.points.row(i).transpose();
-      c.points.row(i) = (c.supported[static_cast<size_t>(i)] ? scan_.closest(q).point : fitted_.closest(q).point).transpose();
+      const auto k = static_cast<size_t>(i);
+      if (c.supported[k]) {
+        c.points.row(i) = scan_.closest(q, &scan_face[k]).point.transpose();
+      } else {
+        const auto cp = fitted_.closest(q, model_face[k]);
+        model_face[k] = cp.face;
+        c.points.row(i) = cp.point.transpose();
+      }
     }
   }
   c.length_mm = polyline_length(c.points, closed);

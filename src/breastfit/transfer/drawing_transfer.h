@@ -97,7 +97,10 @@ class DrawingTransfer {
 
  private:
   struct Projection;
-  Projection project(const Vec3& model_point, const Vec3& model_normal) const;
+  // `scan_face` (in/out, optional): ScanTarget::match's warm start (ClosestPoint mode only).
+  Projection project(const Vec3& model_point, const Vec3& model_normal, Index* scan_face = nullptr) const;
+  // slide_into_fold's closest point, its first query warm-started from `hint_face` (< 0: none).
+  spatial::ClosestPoint slide(const Vec3& q, Index hint_face) const;
 
   const fit::ScanTarget& scan_;
   spatial::ClosestPointIndex fitted_;
