@@ -28,6 +28,7 @@
 #include "breastfit/fit/stage_minimizer.h"
 #include "breastfit/fit/problem.h"
 #include "breastfit/fit/shoulder_landmarks.h"
+#include "breastfit/fit/skin_around.h"
 #include "breastfit/fit/sliding_landmarks.h"
 #include "breastfit/fit/sternum_length.h"
 #include "breastfit/fit/xiphoid_check.h"
@@ -626,6 +627,9 @@ struct NippleSearch {
   std::optional<NippleBump> bump;
 };
 
+// The scan around a nipple its tip and apex are searched on: their axis' radius (40 mm).
+constexpr double kNippleSkinRadiusMm = 40.0;
+
 // The searches of every given nipple (empty slots for the other landmarks). They read only the
 // scan and the fitted model, and each writes its own slot: with options.threads >= 2 the two
 // nipples are searched side by side, the same bits as one after the other.
@@ -639,17 +643,24 @@ std::vector<NippleSearch> search_nipples(const model::RiggedModel& model, const 
   for (size_t i = 0; i < given.size(); ++i)
     if (given[i].name == "nipple_R" || given[i].name == "nipple_L") nipples.push_back(i);
   if (nipples.empty()) return out;
+  const std::vector<char> skin = skin_vertices(scan.mesh());  // once, read by both nipples
   const Points& N = scan_N;  // computed here once, read by both nipples
-  const Points& S = scan.mesh().V;
   for_each_chunk(static_cast<Index>(nipples.size()), 1, options.threads, [&](Index chunk, Index, Index) {
     const size_t i = nipples[static_cast<size_t>(chunk)];
     const LandmarkTarget& t = given[i];
     const Vec3 near =
         i < predicted.size() ? predicted[i] : model_landmark_position(model, t.model_landmark, V, params);
     NippleSearch& found = out[i];
-    found.tip = breast_tip_on_scan(S, S, N, near);
-    if (axes && fitted_sternum_frame(model, V, params, t.name.back()))
-      found.apex = nipple_apex_on_scan(S, S, N, i < predicted.size() ? predicted[i] : t.position, axes->up);
+    // On the skin only: a floating fragment in front of the breast is not its tip (session 20).
+    const SkinPatch around = skin_around(scan.mesh(), N, skin, near, kNippleSkinRadiusMm);
+    found.tip = breast_tip_on_scan(around.V, around.V, around.N, near);
+    const Vec3 apex_centre = i < predicted.size() ? predicted[i] : t.position;
+    if (axes && fitted_sternum_frame(model, V, params, t.name.back())) {
+      const SkinPatch apex_skin =
+          apex_centre == near ? SkinPatch{} : skin_around(scan.mesh(), N, skin, apex_centre, kNippleSkinRadiusMm);
+      const SkinPatch& a = apex_centre == near ? around : apex_skin;
+      found.apex = nipple_apex_on_scan(a.V, a.V, a.N, apex_centre, axes->up);
+    }
     found.bump = nipple_bump_on_scan(scan.index(), N, near);
   });
   return out;
