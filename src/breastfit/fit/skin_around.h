@@ -11,8 +11,7 @@
 /// (docs/REGISTRATION.md, session 20). The skin is the vertices of the scan's connected pieces
 /// (mesh/components.h: triangles sharing a vertex) holding at least kMinSkinPieceFraction of its
 /// triangles. The pieces are the whole scan's, not those of the triangles near the point: a hole
-/// near the nipple cuts the skin there into pieces that are one around the hole (a generated
-/// validation torso's nipple region, 181 triangles within 40 mm, was the breast's tip).
+/// near the nipple can cut the skin there into pieces that are one around the hole.
 /// A scan without triangles (a point cloud) is skin everywhere.
 #include <vector>
 
