@@ -430,8 +430,10 @@ TEST(Registration, PlacedLandmarkChecksAreTheSameWhateverTheNumberOfThreads) {
 }
 
 // Two sharp landmarks moved (the notch 20 mm up, the right acromion 20 mm down): the checks walk
-// both re-linearised predictions, side by side on problems of their own with two threads or more
-// (relinearize_suspects): the same checks and the same fit whatever the number of threads.
+// both re-linearised predictions (relinearize_suspects, one after the other on the fit's problem,
+// each putting its pairs back): the same checks and the same fit whatever the number of threads.
+// (Session 20 measured the two walks side by side on problems of their own, the same bits: not
+// kept, docs/PERFORMANCE.md.)
 TEST(Registration, TwoRelinearizedWalksAreTheSameWhateverTheNumberOfThreads) {
   const synth::SynthCase& c = test_anatomy::synth_case(synth::PoseType::Standing);
   const model::RiggedModel& m = *test::default_template();

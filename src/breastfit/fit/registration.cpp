@@ -511,34 +511,9 @@ void relinearize_suspects(Problem& problem, const model::PoseParams& params, con
   const auto active = active_parameters(problem.evaluator().layout(), options.refine, options.max_blendshapes);
   const Relinearization at_end{options.correspondences.max_distance_end_mm, options.uses_reverse_term(),
                                options.refine.robust_landmarks};
-  const auto walk = [&](Problem& on, size_t i) {
-    return predict_left_out_relinearized(on, params, active, i, kRelinearizationSteps, at_end,
-                                         i < linear_steps.size() ? &linear_steps[i] : nullptr);
-  };
-  if (suspects.size() < 2 || resolve_threads(options.threads) < 2) {
-    for (const auto& [ratio, i] : suspects) predicted[i] = walk(problem, i);
-    return;
-  }
-  // Two walks side by side (session 20): the first on `problem`, the second on a problem of its
-  // own set up as `problem` is before each walk — at `params`, with the pairs found there (each
-  // walk starts from them and puts them back) and its terms updated there. A walk reads nothing
-  // else of the problem, so each finds what it finds one after the other, and `problem` is left
-  // as the walks leave it (at `params`, its pairs and terms recomputed there).
-  Problem::CorrespondenceState at_params = problem.correspondence_state();
-  std::vector<Vec3> found(2);
-  for_each_chunk(2, 1, options.threads, [&](Index chunk, Index, Index) {
-    const size_t i = suspects[static_cast<size_t>(chunk)].second;
-    if (chunk == 0) {
-      found[0] = walk(problem, i);
-      return;
-    }
-    Problem own(problem.evaluator().model(), problem.scan(), problem.options(), problem.landmarks());
-    own.evaluator().set_params(params);
-    own.restore_correspondences(std::move(at_params));
-    own.update_terms(at_end.robust_landmarks);
-    found[1] = walk(own, i);
-  });
-  for (size_t k = 0; k < 2; ++k) predicted[suspects[k].second] = found[k];
+  for (const auto& [ratio, i] : suspects)
+    predicted[i] = predict_left_out_relinearized(problem, params, active, i, kRelinearizationSteps, at_end,
+                                                 i < linear_steps.size() ? &linear_steps[i] : nullptr);
 }
 
 // Each bilateral pair against its mirror image (bilateral_check.h), the check kept by the member
