@@ -1,7 +1,7 @@
 // Benchmarks of the registration's parts and of a whole fit, on a synthetic case made from the
 // shipped default template (no external data): scan index build, correspondences, the arm search
 // of the initialisation, normal equations assembly (with and without the blendshapes), one LM
-// iteration, posing the template, the surface-detail layer, and the full registration (what report.json's time_s
+// iteration, posing the template, the placed landmarks' leave-one-out predictions, the surface-detail layer, and the full registration (what report.json's time_s
 // measures); the parallel parts with 1 and 2 threads (the last argument).
 #include <benchmark/benchmark.h>
 
@@ -13,6 +13,7 @@
 #include "breastfit/fit/registration.h"
 #include "breastfit/fit/surface_detail.h"
 #include "breastfit/fit/initialization.h"
+#include "breastfit/fit/landmark_prediction.h"
 #include "breastfit/mesh/landmarks.h"
 #include "breastfit/model/pose_evaluator.h"
 #include "breastfit/model/template_library.h"
@@ -151,6 +152,26 @@ void BM_SetParams(benchmark::State& state) {
   state.counters["vertices"] = static_cast<double>(f.model.num_vertices());
 }
 BENCHMARK(BM_SetParams)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
+
+// The 12 leave-one-out predictions of the placed-landmark checks (predict_left_out_landmarks: one
+// assembly and factorisation, a low-rank solve and the landmark's posing per landmark) at the
+// fitted parameters and the final correspondences, with 1 and 2 threads (the assembly's).
+void BM_LeaveOneOutPredictions(benchmark::State& state) {
+  auto& f = fixture();
+  const fit::FitOptions options = with_threads(f.options, state.range(0));
+  static const model::PoseParams fitted = fit::register_template(f.model, *f.scan, f.targets, f.options).params;
+  const auto problem = f.problem(options);
+  problem->evaluator().set_params(fitted);
+  problem->update_correspondences(options.correspondences.max_distance_end_mm, 1, options.uses_reverse_term());
+  problem->update_terms(options.refine.robust_landmarks);
+  const auto active = fit::active_parameters(problem->evaluator().layout(), options.refine, options.max_blendshapes);
+  for (auto _ : state) {
+    const auto predicted = fit::predict_left_out_landmarks(*problem, fitted, active);
+    benchmark::DoNotOptimize(predicted.data());
+  }
+  state.counters["landmarks"] = static_cast<double>(f.targets.size());
+}
+BENCHMARK(BM_LeaveOneOutPredictions)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
 
 void BM_OneLmIteration(benchmark::State& state) {
   auto& f = fixture();

@@ -5,6 +5,7 @@
 #include <set>
 
 #include "breastfit/core/errors.h"
+#include "support/default_template.h"
 #include "support/toy_model.h"
 
 namespace breastfit::model {
@@ -243,6 +244,46 @@ TEST_F(PoseEvaluatorTest, SettingParamsAgainKeepsThePoseAndAnyChangeReposes) {
     EXPECT_GT((e.vertices() - posed_a).cwiseAbs().maxCoeff(), 1e-6) << "change " << k;
     e.set_params(a);
     EXPECT_EQ(e.vertices(), posed_a) << "back from change " << k;
+  }
+}
+
+// pose_rows writes the rows asked for, the same bits as set_params, and leaves the others and the
+// evaluator as they were.
+TEST_F(PoseEvaluatorTest, PosingSomeRowsGivesTheBitsOfTheWholePose) {
+  PoseEvaluator e(model);
+  const PoseParams at = test::random_toy_pose(model, 5);
+  e.set_params(at);
+  const Points before = e.vertices();
+  for (unsigned seed : {6u, 7u, 8u}) {
+    const PoseParams p = test::random_toy_pose(model, seed);
+    std::vector<Index> rows;
+    for (Index i = seed % 3; i < model.num_vertices(); i += 3) rows.push_back(i);
+    Points out = before;
+    e.pose_rows(p, rows, out);
+    EXPECT_EQ(e.vertices(), before);
+    const Points whole = pose_vertices(model, p);
+    for (Index i = 0; i < model.num_vertices(); ++i)
+      EXPECT_EQ(out.row(i), (i % 3 == seed % 3 ? whole : before).row(i)) << "vertex " << i;
+  }
+  Points short_rows(2, 3);
+  EXPECT_THROW(e.pose_rows(at, {0}, short_rows), InvalidInput);
+}
+
+// The same on the default template (its blendshapes and skin weights), every vertex, from
+// parameter sets one Newton-like increment away from each other, as the leave-one-out predictions.
+TEST(PoseEvaluatorDefaultTemplate, PosingSomeRowsGivesTheBitsOfTheWholePose) {
+  const RiggedModel& m = *test::default_template();
+  PoseEvaluator e(m);
+  std::vector<Index> all(static_cast<size_t>(m.num_vertices()));
+  for (Index i = 0; i < m.num_vertices(); ++i) all[static_cast<size_t>(i)] = i;
+  PoseParams p = PoseParams::identity(m);
+  for (int k = 0; k < 3; ++k) {
+    const Eigen::VectorXd delta = 0.05 * Eigen::VectorXd::Random(e.layout().num_params());
+    e.layout().apply_increment(m, delta, p);
+    Points out = Points::Zero(m.num_vertices(), 3);
+    e.pose_rows(p, all, out);
+    e.set_params(p);
+    EXPECT_EQ(out, e.vertices()) << "set " << k;
   }
 }
 

@@ -90,6 +90,30 @@ model::PoseParams newton_step(const Problem& problem, const model::PoseParams& p
   return out;
 }
 
+// The rows of the posed mesh model_landmark_position reads for `landmark`, ascending: its surface
+// point's corners and, for a sliding landmark (sliding_landmarks.h), its region's vertices and the
+// corners of every face touching them (lowest_region_point's face is one of those).
+std::vector<Index> rows_read(const model::RiggedModel& model, int landmark) {
+  const Triangles& F = model.rest.F;
+  const auto& lm = model.landmarks[landmark];
+  std::vector<char> read(static_cast<size_t>(model.num_vertices()), 0);
+  const auto add_face = [&](Index f) {
+    for (int c = 0; c < 3; ++c) read[static_cast<size_t>(F(f, c))] = 1;
+  };
+  if (lm.point.face >= 0 && lm.point.face < F.rows()) add_face(lm.point.face);
+  const auto region = sliding_landmark_region(lm.name);
+  if (const auto r = region ? model.region_index(*region) : std::nullopt) {
+    std::vector<char> in_region(read.size(), 0);
+    for (Index v : model.regions[*r].vertices) in_region[static_cast<size_t>(v)] = read[static_cast<size_t>(v)] = 1;
+    for (Index f = 0; f < F.rows(); ++f)
+      if (in_region[F(f, 0)] || in_region[F(f, 1)] || in_region[F(f, 2)]) add_face(f);
+  }
+  std::vector<Index> rows;
+  for (size_t v = 0; v < read.size(); ++v)
+    if (read[v]) rows.push_back(static_cast<Index>(v));
+  return rows;
+}
+
 }  // namespace
 
 model::PoseParams leave_out_landmarks(Problem& problem, const model::PoseParams& params, const std::vector<int>& active,
@@ -110,12 +134,14 @@ std::vector<Vec3> predict_left_out_landmarks(Problem& problem, const model::Pose
     const std::vector<size_t> one{i};
     steps.push_back(newton_step(problem, params, active, solver, assemble(problem, active, &one)));
   }
+  // Each step's landmark from the few vertices it reads, posed into a copy of the mesh at
+  // `params` (pose_rows: the bits of posing the whole mesh; the evaluator stays at `params`).
   std::vector<Vec3> out;
+  Points V = ev.vertices();
   for (size_t i = 0; i < landmarks.size(); ++i) {
-    ev.set_params(steps[i]);
-    out.push_back(model_landmark_position(ev.model(), landmarks[i].model_landmark, ev.vertices(), steps[i]));
+    ev.pose_rows(steps[i], rows_read(ev.model(), landmarks[i].model_landmark), V);
+    out.push_back(model_landmark_position(ev.model(), landmarks[i].model_landmark, V, steps[i]));
   }
-  ev.set_params(params);
   if (steps_out) *steps_out = std::move(steps);
   return out;
 }

@@ -132,6 +132,48 @@ void PoseEvaluator::set_params(const PoseParams& params) {
   }
 }
 
+void PoseEvaluator::pose_rows(const PoseParams& params, const std::vector<Index>& rows, Points& out) const {
+  const RiggedModel& m = model_;
+  if (static_cast<int>(params.bones.size()) != m.num_bones() || params.alpha.size() != m.num_blendshapes())
+    throw InvalidInput("pose evaluator: parameters have " + std::to_string(params.bones.size()) + " bones and " +
+                       std::to_string(params.alpha.size()) + " blendshape weights, the model has " +
+                       std::to_string(m.num_bones()) + " and " + std::to_string(m.num_blendshapes()));
+  if (out.rows() != m.num_vertices()) throw InvalidInput("pose evaluator: pose_rows needs #V rows to write into");
+  // Each expression as set_params writes it (the shaped vertex kept in a row of Points, as
+  // shaped_): the same roundings.
+  const Mat3 global_linear = params.global.scale * params.global.rotation.toRotationMatrix();
+  std::vector<Mat3> linear(m.bones.size());
+  std::vector<Vec3> offset(m.bones.size());
+  for (int j = 0; j < m.num_bones(); ++j) {
+    const Bone& b = m.bones[j];
+    const BonePose& p = params.bones[j];
+    const Mat3 RU = p.rotation.toRotationMatrix() * b.axes;
+    linear[j] = RU * p.scale.asDiagonal() * b.axes.transpose();
+    offset[j] = b.pivot + p.translation - linear[j] * b.pivot;
+  }
+  const double* alpha = params.alpha.data();
+  const Vec3 tg = params.global.translation;
+  Points shaped(1, 3);
+  for (Index i : rows) {
+    if (i < 0 || i >= m.num_vertices()) throw InvalidInput("pose evaluator: vertex " + std::to_string(i) + " out of range");
+    Vec3 b = m.rest.V.row(i).transpose();
+    for (int e = shape_ptr_[i]; e < shape_ptr_[i + 1]; ++e) {
+      const double a = alpha[shape_entries_[e].shape];
+      if (a != 0.0) b += a * shape_entries_[e].displacement;
+    }
+    shaped.row(0) = b.transpose();
+    Mat3 A = Mat3::Zero();
+    Vec3 o = Vec3::Zero();
+    for (SkinWeights::InnerIterator it(m.weights, i); it; ++it) {
+      const double w = it.value();
+      A.noalias() += w * linear[it.col()];
+      o.noalias() += w * offset[it.col()];
+    }
+    const Vec3 x = A * shaped.row(0).transpose() + o;
+    out.row(i) = (global_linear * x + tg).transpose();
+  }
+}
+
 Points PoseEvaluator::vertex_normals() const { return mesh::vertex_normals(posed_, model_.rest.F); }
 
 void PoseEvaluator::append_global(const Vec3& x, PointJacobian& out) const {

@@ -37,6 +37,12 @@ class PoseEvaluator {
 
   /// Posed vertices M (#V by 3, after the global similarity).
   const Points& vertices() const { return posed_; }
+  /// Poses only the vertices `rows` for `params` into the same rows of `out` (#V by 3; the other
+  /// rows are left as they are), the same bits as set_params(params) followed by vertices(); the
+  /// evaluator itself is not changed. For a caller that reads a few vertices of many parameter
+  /// sets (the leave-one-out predictions, landmark_prediction.h): O(#bones + |rows|) per call
+  /// instead of O(#V + nnz(blendshapes)).
+  void pose_rows(const PoseParams& params, const std::vector<Index>& rows, Points& out) const;
   /// Area-weighted unit normals of the posed mesh.
   Points vertex_normals() const;
 
