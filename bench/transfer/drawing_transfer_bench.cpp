@@ -67,5 +67,3 @@ void BM_BreastSideWarmCache(benchmark::State& state) {
 BENCHMARK(BM_BreastSideWarmCache)->Unit(benchmark::kMillisecond);
 
 }  // namespace
-
-BENCHMARK_MAIN();
