@@ -385,6 +385,40 @@ TEST(Registration, ASubsetOfLandmarksPlacesTheAnatomyAgainAfterTheRefineStage) {
   EXPECT_EQ(refines(given), 1);
 }
 
+// Registers `moved` on the synthetic case `c` with 1, 2 and 3 threads and expects the same fit and
+// the same checks (distances, anatomy, factors, flags, warnings) with each; returns the one-thread
+// fit.
+FitResult expect_same_checks_whatever_the_threads(const synth::SynthCase& c, const model::RiggedModel& m,
+                                                  const std::vector<LandmarkTarget>& moved) {
+  const auto fit = [&](int threads) {
+    ScanTarget scan(c.scan);
+    FitOptions o;
+    o.threads = threads;
+    return register_template(m, scan, moved, o);
+  };
+  FitResult one = fit(1);
+  EXPECT_TRUE(one.summary.usable()) << one.summary.message;
+  const auto& checks = one.summary.landmark_checks;
+  for (int threads : {2, 3}) {
+    const FitResult many = fit(threads);
+    EXPECT_EQ(many.summary.warnings, one.summary.warnings) << threads;
+    EXPECT_EQ(many.vertices, one.vertices) << threads;
+    EXPECT_EQ(many.params.alpha, one.params.alpha) << threads;
+    EXPECT_EQ(many.summary.landmark_checks.size(), checks.size()) << threads;
+    for (size_t i = 0; i < std::min(checks.size(), many.summary.landmark_checks.size()); ++i) {
+      const auto &a = checks[i], &b = many.summary.landmark_checks[i];
+      EXPECT_EQ(b.distance_mm, a.distance_mm) << a.name << threads;
+      EXPECT_EQ(b.predicted_distance_mm, a.predicted_distance_mm) << a.name << threads;
+      EXPECT_EQ(b.anatomy_distance_mm, a.anatomy_distance_mm) << a.name << threads;
+      EXPECT_EQ(b.anatomy_tolerance_mm, a.anatomy_tolerance_mm) << a.name << threads;
+      EXPECT_EQ(b.anatomy, a.anatomy) << a.name << threads;
+      EXPECT_EQ(b.factor, a.factor) << a.name << threads;
+      EXPECT_EQ(b.flagged, a.flagged) << a.name << threads;
+    }
+  }
+  return one;
+}
+
 // The placed landmarks' checks on threads (the two nipples' scan searches side by side): a
 // synthetic torso with the right nipple placed 30 mm too low is flagged, and the checks —
 // predictions, anatomy, flags, factors, warnings — and the fit held off by them are the same bits
@@ -397,36 +431,11 @@ TEST(Registration, PlacedLandmarkChecksAreTheSameWhateverTheNumberOfThreads) {
   const auto nipple = std::find_if(named.begin(), named.end(), [](const auto& p) { return p.first == "nipple_R"; });
   ASSERT_NE(nipple, named.end());
   nipple->second -= 30.0 * test_anatomy::body_frame(c).up;
-  const auto moved = match_landmarks(m, named);
-  const auto fit = [&](int threads) {
-    ScanTarget scan(c.scan);
-    FitOptions o;
-    o.threads = threads;
-    return register_template(m, scan, moved, o);
-  };
-  const FitResult one = fit(1);
-  ASSERT_TRUE(one.summary.usable()) << one.summary.message;
+  const FitResult one = expect_same_checks_whatever_the_threads(c, m, match_landmarks(m, named));
   const auto& checks = one.summary.landmark_checks;
   const auto right = std::find_if(checks.begin(), checks.end(), [](const LandmarkCheck& k) { return k.name == "nipple_R"; });
   ASSERT_NE(right, checks.end());
   EXPECT_TRUE(right->flagged);
-  for (int threads : {2, 3}) {
-    const FitResult many = fit(threads);
-    EXPECT_EQ(many.summary.warnings, one.summary.warnings) << threads;
-    EXPECT_EQ(many.vertices, one.vertices) << threads;
-    EXPECT_EQ(many.params.alpha, one.params.alpha) << threads;
-    ASSERT_EQ(many.summary.landmark_checks.size(), checks.size()) << threads;
-    for (size_t i = 0; i < checks.size(); ++i) {
-      const auto &a = checks[i], &b = many.summary.landmark_checks[i];
-      EXPECT_EQ(b.distance_mm, a.distance_mm) << a.name << threads;
-      EXPECT_EQ(b.predicted_distance_mm, a.predicted_distance_mm) << a.name << threads;
-      EXPECT_EQ(b.anatomy_distance_mm, a.anatomy_distance_mm) << a.name << threads;
-      EXPECT_EQ(b.anatomy_tolerance_mm, a.anatomy_tolerance_mm) << a.name << threads;
-      EXPECT_EQ(b.anatomy, a.anatomy) << a.name << threads;
-      EXPECT_EQ(b.factor, a.factor) << a.name << threads;
-      EXPECT_EQ(b.flagged, a.flagged) << a.name << threads;
-    }
-  }
 }
 
 // Two sharp landmarks moved (the notch 20 mm up, the right acromion 20 mm down): the checks walk
@@ -446,33 +455,11 @@ TEST(Registration, TwoRelinearizedWalksAreTheSameWhateverTheNumberOfThreads) {
     moved_count += name == "sternal_notch" || name == "acromion_R";
   }
   ASSERT_EQ(moved_count, 2);
-  const auto moved = match_landmarks(m, named);
-  const auto fit = [&](int threads) {
-    ScanTarget scan(c.scan);
-    FitOptions o;
-    o.threads = threads;
-    return register_template(m, scan, moved, o);
-  };
-  const FitResult one = fit(1);
-  ASSERT_TRUE(one.summary.usable()) << one.summary.message;
-  const auto& checks = one.summary.landmark_checks;
+  const FitResult one = expect_same_checks_whatever_the_threads(c, m, match_landmarks(m, named));
   int flagged = 0;
-  for (const auto& k : checks) flagged += k.flagged && (k.name == "sternal_notch" || k.name == "acromion_R");
+  for (const auto& k : one.summary.landmark_checks)
+    flagged += k.flagged && (k.name == "sternal_notch" || k.name == "acromion_R");
   EXPECT_GE(flagged, 1);
-  for (int threads : {2, 3}) {
-    const FitResult many = fit(threads);
-    EXPECT_EQ(many.summary.warnings, one.summary.warnings) << threads;
-    EXPECT_EQ(many.vertices, one.vertices) << threads;
-    EXPECT_EQ(many.params.alpha, one.params.alpha) << threads;
-    ASSERT_EQ(many.summary.landmark_checks.size(), checks.size()) << threads;
-    for (size_t i = 0; i < checks.size(); ++i) {
-      const auto &a = checks[i], &b = many.summary.landmark_checks[i];
-      EXPECT_EQ(b.predicted_distance_mm, a.predicted_distance_mm) << a.name << threads;
-      EXPECT_EQ(b.anatomy_distance_mm, a.anatomy_distance_mm) << a.name << threads;
-      EXPECT_EQ(b.factor, a.factor) << a.name << threads;
-      EXPECT_EQ(b.flagged, a.flagged) << a.name << threads;
-    }
-  }
 }
 
 }  // namespace

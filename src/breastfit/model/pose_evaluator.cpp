@@ -20,6 +20,28 @@ inline Vec3 unit_cross(int m, const Vec3& y) {
 
 bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
+/// One bone's pose: R_j U_j, L_j = R_j U_j diag(s_j) U_jᵀ and o_j = c_j + t_j − L_j c_j, so that
+/// L_j (B − c_j) + c_j + t_j = L_j B + o_j.
+struct BoneTransform {
+  Mat3 rotated_axes, linear;
+  Vec3 offset;
+};
+
+void require_model_params(const RiggedModel& m, const PoseParams& params) {
+  if (static_cast<int>(params.bones.size()) != m.num_bones() || params.alpha.size() != m.num_blendshapes())
+    throw InvalidInput("pose evaluator: parameters have " + std::to_string(params.bones.size()) + " bones and " +
+                       std::to_string(params.alpha.size()) + " blendshape weights, the model has " +
+                       std::to_string(m.num_bones()) + " and " + std::to_string(m.num_blendshapes()));
+}
+
+BoneTransform bone_transform(const Bone& b, const BonePose& p) {
+  BoneTransform t;
+  t.rotated_axes = p.rotation.toRotationMatrix() * b.axes;
+  t.linear = t.rotated_axes * p.scale.asDiagonal() * b.axes.transpose();
+  t.offset = b.pivot + p.translation - t.linear * b.pivot;
+  return t;
+}
+
 template <class M>
 bool same_bits(const M& a, const M& b) {
   if (a.size() != b.size()) return false;
@@ -74,10 +96,7 @@ PoseEvaluator::PoseEvaluator(const RiggedModel& model) : model_(model), layout_(
 
 void PoseEvaluator::set_params(const PoseParams& params) {
   const RiggedModel& m = model_;
-  if (static_cast<int>(params.bones.size()) != m.num_bones() || params.alpha.size() != m.num_blendshapes())
-    throw InvalidInput("pose evaluator: parameters have " + std::to_string(params.bones.size()) + " bones and " +
-                       std::to_string(params.alpha.size()) + " blendshape weights, the model has " +
-                       std::to_string(m.num_bones()) + " and " + std::to_string(m.num_blendshapes()));
+  require_model_params(m, params);
   // The solver sets the same parameters again (after an accepted step, at a stage's start and
   // end): the posed mesh is already theirs.
   if (posed_.rows() == m.num_vertices() && same_params(params, params_)) return;
@@ -91,85 +110,69 @@ void PoseEvaluator::set_params(const PoseParams& params) {
   // pass per shape would add them).
   if (!same_shape) {
     shaped_.resize(nv, 3);
-    const double* alpha = params.alpha.data();
-    for (Index i = 0; i < nv; ++i) {
-      Vec3 b = m.rest.V.row(i).transpose();
-      for (int e = shape_ptr_[i]; e < shape_ptr_[i + 1]; ++e) {
-        const double a = alpha[shape_entries_[e].shape];
-        if (a != 0.0) b += a * shape_entries_[e].displacement;
-      }
-      shaped_.row(i) = b.transpose();
-    }
+    for (Index i = 0; i < nv; ++i) shaped_.row(i) = shaped_vertex(i, params.alpha.data()).transpose();
   }
 
-  // Per bone: L_j and the offset o_j = c_j + t_j − L_j c_j, so that L_j (B − c_j) + c_j + t_j = L_j B + o_j.
   global_linear_ = params.global.scale * params.global.rotation.toRotationMatrix();
   std::vector<Vec3> offset(m.bones.size());
   for (int j = 0; j < m.num_bones(); ++j) {
-    const Bone& b = m.bones[j];
-    const BonePose& p = params.bones[j];
-    const Mat3 RU = p.rotation.toRotationMatrix() * b.axes;
-    bone_linear_[j] = RU * p.scale.asDiagonal() * b.axes.transpose();
-    bone_scale_axes_[j] = global_linear_ * RU;
-    offset[j] = b.pivot + p.translation - bone_linear_[j] * b.pivot;
+    const BoneTransform t = bone_transform(m.bones[j], params.bones[j]);
+    bone_linear_[j] = t.linear;
+    bone_scale_axes_[j] = global_linear_ * t.rotated_axes;
+    offset[j] = t.offset;
   }
 
   skinned_.resize(nv, 3);
   posed_.resize(nv, 3);
   const Vec3 tg = params.global.translation;
   for (Index i = 0; i < nv; ++i) {
-    Mat3 A = Mat3::Zero();
-    Vec3 o = Vec3::Zero();
-    for (SkinWeights::InnerIterator it(m.weights, i); it; ++it) {
-      const double w = it.value();
-      A.noalias() += w * bone_linear_[it.col()];
-      o.noalias() += w * offset[it.col()];
-    }
-    const Vec3 x = A * shaped_.row(i).transpose() + o;
+    Mat3 A;
+    const Vec3 x = skinned_vertex(i, shaped_.row(i).transpose(), bone_linear_, offset, A);
     skinned_.row(i) = x.transpose();
     posed_.row(i) = (global_linear_ * x + tg).transpose();
     vertex_linear_[i].noalias() = global_linear_ * A;
   }
 }
 
+Vec3 PoseEvaluator::shaped_vertex(Index i, const double* alpha) const {
+  Vec3 b = model_.rest.V.row(i).transpose();
+  for (int e = shape_ptr_[i]; e < shape_ptr_[i + 1]; ++e) {
+    const double a = alpha[shape_entries_[e].shape];
+    if (a != 0.0) b += a * shape_entries_[e].displacement;
+  }
+  return b;
+}
+
+Vec3 PoseEvaluator::skinned_vertex(Index i, const Vec3& shaped, const std::vector<Mat3>& linear,
+                                   const std::vector<Vec3>& offset, Mat3& A) const {
+  A = Mat3::Zero();
+  Vec3 o = Vec3::Zero();
+  for (SkinWeights::InnerIterator it(model_.weights, i); it; ++it) {
+    const double w = it.value();
+    A.noalias() += w * linear[it.col()];
+    o.noalias() += w * offset[it.col()];
+  }
+  return A * shaped + o;
+}
+
 void PoseEvaluator::pose_rows(const PoseParams& params, const std::vector<Index>& rows, Points& out) const {
   const RiggedModel& m = model_;
-  if (static_cast<int>(params.bones.size()) != m.num_bones() || params.alpha.size() != m.num_blendshapes())
-    throw InvalidInput("pose evaluator: parameters have " + std::to_string(params.bones.size()) + " bones and " +
-                       std::to_string(params.alpha.size()) + " blendshape weights, the model has " +
-                       std::to_string(m.num_bones()) + " and " + std::to_string(m.num_blendshapes()));
+  require_model_params(m, params);
   if (out.rows() != m.num_vertices()) throw InvalidInput("pose evaluator: pose_rows needs #V rows to write into");
-  // Each expression as set_params writes it (the shaped vertex kept in a row of Points, as
-  // shaped_): the same roundings.
+  // The same helpers as set_params: the same roundings.
   const Mat3 global_linear = params.global.scale * params.global.rotation.toRotationMatrix();
   std::vector<Mat3> linear(m.bones.size());
   std::vector<Vec3> offset(m.bones.size());
   for (int j = 0; j < m.num_bones(); ++j) {
-    const Bone& b = m.bones[j];
-    const BonePose& p = params.bones[j];
-    const Mat3 RU = p.rotation.toRotationMatrix() * b.axes;
-    linear[j] = RU * p.scale.asDiagonal() * b.axes.transpose();
-    offset[j] = b.pivot + p.translation - linear[j] * b.pivot;
+    const BoneTransform t = bone_transform(m.bones[j], params.bones[j]);
+    linear[j] = t.linear;
+    offset[j] = t.offset;
   }
-  const double* alpha = params.alpha.data();
   const Vec3 tg = params.global.translation;
-  Points shaped(1, 3);
   for (Index i : rows) {
     if (i < 0 || i >= m.num_vertices()) throw InvalidInput("pose evaluator: vertex " + std::to_string(i) + " out of range");
-    Vec3 b = m.rest.V.row(i).transpose();
-    for (int e = shape_ptr_[i]; e < shape_ptr_[i + 1]; ++e) {
-      const double a = alpha[shape_entries_[e].shape];
-      if (a != 0.0) b += a * shape_entries_[e].displacement;
-    }
-    shaped.row(0) = b.transpose();
-    Mat3 A = Mat3::Zero();
-    Vec3 o = Vec3::Zero();
-    for (SkinWeights::InnerIterator it(m.weights, i); it; ++it) {
-      const double w = it.value();
-      A.noalias() += w * linear[it.col()];
-      o.noalias() += w * offset[it.col()];
-    }
-    const Vec3 x = A * shaped.row(0).transpose() + o;
+    Mat3 A;
+    const Vec3 x = skinned_vertex(i, shaped_vertex(i, params.alpha.data()), linear, offset, A);
     out.row(i) = (global_linear * x + tg).transpose();
   }
 }

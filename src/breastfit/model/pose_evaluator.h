@@ -82,6 +82,12 @@ class PoseEvaluator {
   std::vector<int> shape_ptr_;
   std::vector<ShapeEntry> shape_entries_;
 
+  // B_i = v_i + Σ α_k b_ki for vertex i (the shapes in ascending order).
+  Vec3 shaped_vertex(Index i, const double* alpha) const;
+  // x_i = A_i B_i + Σ_j w_ji o_j with A_i = Σ_j w_ji L_j, for the bones' L_j and o_j.
+  Vec3 skinned_vertex(Index i, const Vec3& shaped, const std::vector<Mat3>& linear,
+                      const std::vector<Vec3>& offset, Mat3& A) const;
+
   void append_global(const Vec3& x, PointJacobian& out) const;
   void append_bone(int j, double w, const Vec3& d, PointJacobian& out) const;
 };
