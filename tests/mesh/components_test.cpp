@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
+
 #include "breastfit/core/errors.h"
 
 namespace breastfit::mesh {
@@ -57,6 +59,40 @@ TEST(Components, OutOfRangeThrows) {
   Triangles F(1, 3);
   F << 0, 1, 3;
   EXPECT_THROW(connected_components(F, 3), InvalidInput);
+  TriangleMesh m;
+  m.V = Points::Zero(3, 3);
+  m.F = F;
+  EXPECT_THROW(component_size_per_vertex(m), InvalidInput);
+}
+
+// The sizes without the labels: each vertex's component's face_count, 0 for an unused vertex —
+// on the three pieces above and on random triangles over many vertices (pieces of every size).
+TEST(Components, SizePerVertexIsTheLabelledComponentsFaceCount) {
+  const auto expect_same = [](const TriangleMesh& m) {
+    const Components c = connected_components(m);
+    const std::vector<Index> size = component_size_per_vertex(m);
+    ASSERT_EQ(size.size(), c.vertex_label.size());
+    for (size_t v = 0; v < size.size(); ++v)
+      EXPECT_EQ(size[v], c.vertex_label[v] ? c.face_count[static_cast<size_t>(*c.vertex_label[v])] : 0) << v;
+  };
+  TriangleMesh pieces;
+  pieces.V = Points::Zero(15, 3);
+  pieces.F.resize(6, 3);
+  pieces.F << 0, 1, 2, 3, 4, 5, 3, 5, 6, 3, 6, 7, 8, 9, 10, 8, 11, 12;
+  expect_same(pieces);
+  TriangleMesh random;
+  random.V = Points::Zero(3000, 3);
+  random.F.resize(700, 3);
+  std::uint64_t state = 12345;
+  for (Index f = 0; f < random.F.rows(); ++f)
+    for (int c = 0; c < 3; ++c) {
+      state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+      random.F(f, c) = static_cast<Index>((state >> 33) % 3000);
+    }
+  expect_same(random);
+  TriangleMesh cloud;
+  cloud.V = Points::Zero(4, 3);
+  EXPECT_EQ(component_size_per_vertex(cloud), (std::vector<Index>(4, 0)));
 }
 
 }  // namespace

@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <unordered_map>
 #include <vector>
 
 #include "breastfit/spatial/cell_grid.h"
@@ -15,14 +14,24 @@ namespace breastfit::fit {
 
 namespace {
 
-// One scan vertex per cell of a `cell_mm` grid, among `points` (indices into them).
+// One scan vertex per cell of a `cell_mm` grid, among `points` (indices into them): the first of
+// each cell, ascending. The cells seen are kept in an open-addressing set of their keys (a few
+// thousand points per call, twice per nipple: std::unordered_map's node per cell cost more than
+// the rest of the pass).
 std::vector<Index> one_per_cell(const Points& points, double cell_mm) {
-  std::unordered_map<std::int64_t, Index> cells;
-  cells.reserve(static_cast<size_t>(points.rows()));
+  size_t slots = 16;
+  while (slots < 2 * static_cast<size_t>(points.rows())) slots *= 2;
+  constexpr std::int64_t kEmpty = -1;  // keys are 63-bit: never negative
+  std::vector<std::int64_t> seen(slots, kEmpty);
   std::vector<Index> out;
   for (Index i = 0; i < points.rows(); ++i) {
     const auto c = [&](int axis) { return static_cast<std::int64_t>(std::floor(points(i, axis) / cell_mm)) & 0x1fffff; };
-    if (cells.emplace((c(0) << 42) | (c(1) << 21) | c(2), i).second) out.push_back(i);
+    const std::int64_t key = (c(0) << 42) | (c(1) << 21) | c(2);
+    size_t slot = static_cast<size_t>((static_cast<std::uint64_t>(key) * 0x9E3779B97F4A7C15ULL) >> 20) & (slots - 1);
+    while (seen[slot] != kEmpty && seen[slot] != key) slot = (slot + 1) & (slots - 1);
+    if (seen[slot] == key) continue;
+    seen[slot] = key;
+    out.push_back(i);
   }
   return out;
 }
@@ -55,22 +64,21 @@ std::optional<NippleBump> measure_local(const Points& scan_vertices, const Point
   std::vector<double> sq;
   // The bump height at p (scan normal n_p), or nullopt without enough scan around it.
   const auto height_at = [&](const Vec3& p, const Vec3& n_p) -> std::optional<double> {
-    coarse_cells.within(p, options.ring_outer_mm, nb, sq);
+    // The ring only (sorted without the disc inside it): the ring's points in the ball's order.
+    coarse_cells.within(p, options.ring_outer_mm, nb, sq, inner2);
     Vec3 sum = Vec3::Zero();
     int n = 0;
-    for (size_t j = 0; j < nb.size(); ++j)
-      if (sq[j] >= inner2) {
-        sum += coarse.row(nb[j]).transpose();
-        ++n;
-      }
+    for (const Index j : nb) {
+      sum += coarse.row(j).transpose();
+      ++n;
+    }
     if (n < 6) return std::nullopt;
     const Vec3 c = sum / n;
     Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-    for (size_t j = 0; j < nb.size(); ++j)
-      if (sq[j] >= inner2) {
-        const Vec3 d = coarse.row(nb[j]).transpose() - c;
-        cov += d * d.transpose();
-      }
+    for (const Index j : nb) {
+      const Vec3 d = coarse.row(j).transpose() - c;
+      cov += d * d.transpose();
+    }
     Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
     eig.computeDirect(cov);
     Vec3 normal = eig.eigenvectors().col(0);

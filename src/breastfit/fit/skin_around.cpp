@@ -7,12 +7,10 @@ namespace breastfit::fit {
 std::vector<char> skin_vertices(const TriangleMesh& scan) {
   std::vector<char> out(static_cast<size_t>(scan.num_vertices()), 1);
   if (scan.is_point_cloud()) return out;
-  const mesh::Components pieces = mesh::connected_components(scan);
+  // A vertex no triangle uses counts 0 triangles: below the (positive) minimum, not skin.
+  const std::vector<Index> piece_triangles = mesh::component_size_per_vertex(scan);
   const double min_triangles = kMinSkinPieceFraction * static_cast<double>(scan.num_faces());
-  for (size_t i = 0; i < out.size(); ++i) {
-    const auto& piece = pieces.vertex_label[i];
-    out[i] = piece && static_cast<double>(pieces.face_count[static_cast<size_t>(*piece)]) >= min_triangles;
-  }
+  for (size_t i = 0; i < out.size(); ++i) out[i] = static_cast<double>(piece_triangles[i]) >= min_triangles;
   return out;
 }
 

@@ -18,22 +18,29 @@ Index find_root(std::vector<Index>& parent, Index x) {
   return x;
 }
 
+// The union-find forest of the vertices, triangles joining their corners (every root a component's
+// or an unused vertex's).
+std::vector<Index> union_find(const Triangles& F, Index num_vertices) {
+  const size_t nv = static_cast<size_t>(std::max<Index>(num_vertices, 0));
+  std::vector<Index> parent(nv);
+  std::iota(parent.begin(), parent.end(), Index(0));
+  check_triangle_indices(F, num_vertices);
+  for (Eigen::Index f = 0; f < F.rows(); ++f) {
+    const Index r0 = find_root(parent, F(f, 0));
+    for (int c = 1; c < 3; ++c) {
+      const Index r = find_root(parent, F(f, c));
+      if (r != r0) parent[static_cast<size_t>(r)] = r0;
+    }
+  }
+  return parent;
+}
+
 }  // namespace
 
 Components connected_components(const Triangles& F, Index num_vertices) {
   const size_t nv = static_cast<size_t>(std::max<Index>(num_vertices, 0));
   const size_t nf = static_cast<size_t>(F.rows());
-  std::vector<Index> parent(nv);
-  std::iota(parent.begin(), parent.end(), Index(0));
-  check_triangle_indices(F, num_vertices);
-  for (size_t f = 0; f < nf; ++f) {
-    const auto fi = static_cast<Eigen::Index>(f);
-    const Index r0 = find_root(parent, F(fi, 0));
-    for (int c = 1; c < 3; ++c) {
-      const Index r = find_root(parent, F(fi, c));
-      if (r != r0) parent[static_cast<size_t>(r)] = r0;
-    }
-  }
+  std::vector<Index> parent = union_find(F, num_vertices);
 
   // Provisional component per root, in order of first triangle.
   std::vector<Index> root_to_comp(nv, -1);
@@ -83,6 +90,15 @@ Components connected_components(const Triangles& F, Index num_vertices) {
 
 Components connected_components(const TriangleMesh& mesh) {
   return connected_components(mesh.F, mesh.num_vertices());
+}
+
+std::vector<Index> component_size_per_vertex(const TriangleMesh& mesh) {
+  std::vector<Index> parent = union_find(mesh.F, mesh.num_vertices());
+  std::vector<Index> at_root(parent.size(), 0);  // an unused vertex is a root no triangle counts
+  for (Eigen::Index f = 0; f < mesh.F.rows(); ++f) ++at_root[static_cast<size_t>(find_root(parent, mesh.F(f, 0)))];
+  std::vector<Index> out(parent.size());
+  for (size_t v = 0; v < out.size(); ++v) out[v] = at_root[static_cast<size_t>(find_root(parent, static_cast<Index>(v)))];
+  return out;
 }
 
 }  // namespace breastfit::mesh

@@ -29,4 +29,11 @@ struct Components {
 Components connected_components(const Triangles& F, Index num_vertices);
 Components connected_components(const TriangleMesh& mesh);
 
+/// Per vertex, how many triangles its connected component has (connected_components' face_count
+/// of its label), 0 for a vertex no triangle uses: the components' sizes without labelling or
+/// ordering them (fit/skin_around.cpp asks only how big each vertex's piece is, once per fit: the
+/// labels cost more than the union-find).
+/// \throws InvalidInput if an index is out of range
+std::vector<Index> component_size_per_vertex(const TriangleMesh& mesh);
+
 }  // namespace breastfit::mesh

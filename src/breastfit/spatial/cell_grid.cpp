@@ -25,7 +25,8 @@ CellGrid::CellGrid(const Points& points, double radius, int split)
     order_[static_cast<size_t>(fill[static_cast<size_t>(cell[static_cast<size_t>(i)])]++)] = i;
 }
 
-void CellGrid::within(const Vec3& p, double radius, std::vector<Index>& nb, std::vector<double>& sq) const {
+void CellGrid::within(const Vec3& p, double radius, std::vector<Index>& nb, std::vector<double>& sq,
+                      double min_sq) const {
   found_.clear();
   nb.clear();
   sq.clear();
@@ -45,7 +46,7 @@ void CellGrid::within(const Vec3& p, double radius, std::vector<Index>& nb, std:
            ++k) {
         const Index i = order_[static_cast<size_t>(k)];
         const double s = row_sq_dist(points_, i, p);
-        if (s <= r2) found_.emplace_back(s, i);
+        if (s <= r2 && s >= min_sq) found_.emplace_back(s, i);
       }
     }
   std::sort(found_.begin(), found_.end());

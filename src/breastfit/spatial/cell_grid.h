@@ -33,7 +33,10 @@ class CellGrid {
 
   /// The points within `radius` (<= the grid's radius) of p, inclusive, by ascending squared
   /// distance (`sq`) and index (`nb`). Not thread-safe (a scratch buffer per grid).
-  void within(const Vec3& p, double radius, std::vector<Index>& nb, std::vector<double>& sq) const;
+  /// With `min_sq`, only those whose squared distance is at least that (a ring: the same points,
+  /// in the same order, as those of the whole ball that pass the test, without sorting the others).
+  void within(const Vec3& p, double radius, std::vector<Index>& nb, std::vector<double>& sq,
+              double min_sq = 0.0) const;
 
  private:
   std::array<Index, 3> cell_of(const Vec3& p) const;
