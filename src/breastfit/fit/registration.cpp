@@ -631,8 +631,10 @@ struct NippleSearch {
 constexpr double kNippleSkinRadiusMm = 40.0;
 
 // The searches of every given nipple (empty slots for the other landmarks). They read only the
-// scan and the fitted model, and each writes its own slot: with options.threads >= 2 the two
-// nipples are searched side by side, the same bits as one after the other.
+// scan and the fitted model, and each writes its own slot: with options.threads >= 2 they run side
+// by side, the same bits as one after the other. The skin's labels (skin_vertices: a pass over
+// every scan triangle, serial) are needed by the tips and apexes only: they are computed beside
+// the bumps, then the tips and apexes of the nipples side by side.
 std::vector<NippleSearch> search_nipples(const model::RiggedModel& model, const Points& V,
                                          const model::PoseParams& params, const ScanTarget& scan,
                                          const std::optional<BodyAxes>& axes, const std::vector<LandmarkTarget>& given,
@@ -643,13 +645,23 @@ std::vector<NippleSearch> search_nipples(const model::RiggedModel& model, const 
   for (size_t i = 0; i < given.size(); ++i)
     if (given[i].name == "nipple_R" || given[i].name == "nipple_L") nipples.push_back(i);
   if (nipples.empty()) return out;
-  const std::vector<char> skin = skin_vertices(scan.mesh());  // once, read by both nipples
   const Points& N = scan_N;  // computed here once, read by both nipples
+  const auto near_of = [&](size_t i) {
+    return i < predicted.size() ? predicted[i] : model_landmark_position(model, given[i].model_landmark, V, params);
+  };
+  std::vector<char> skin;  // chunk 0; the bumps chunks 1, 2
+  for_each_chunk(static_cast<Index>(nipples.size()) + 1, 1, options.threads, [&](Index chunk, Index, Index) {
+    if (chunk == 0) {
+      skin = skin_vertices(scan.mesh());
+      return;
+    }
+    const size_t i = nipples[static_cast<size_t>(chunk - 1)];
+    out[i].bump = nipple_bump_on_scan(scan.index(), N, near_of(i));
+  });
   for_each_chunk(static_cast<Index>(nipples.size()), 1, options.threads, [&](Index chunk, Index, Index) {
     const size_t i = nipples[static_cast<size_t>(chunk)];
     const LandmarkTarget& t = given[i];
-    const Vec3 near =
-        i < predicted.size() ? predicted[i] : model_landmark_position(model, t.model_landmark, V, params);
+    const Vec3 near = near_of(i);
     NippleSearch& found = out[i];
     // On the skin only: a floating fragment in front of the breast is not its tip (session 20).
     const SkinPatch around = skin_around(scan.mesh(), N, skin, near, kNippleSkinRadiusMm);
@@ -661,7 +673,6 @@ std::vector<NippleSearch> search_nipples(const model::RiggedModel& model, const 
       const SkinPatch& a = apex_centre == near ? around : apex_skin;
       found.apex = nipple_apex_on_scan(a.V, a.V, a.N, apex_centre, axes->up);
     }
-    found.bump = nipple_bump_on_scan(scan.index(), N, near);
   });
   return out;
 }
