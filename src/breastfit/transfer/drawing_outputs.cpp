@@ -32,10 +32,14 @@ void finish(std::ofstream& f, const fs::path& path) {
   if (!f) throw IoError(path.string(), "write failed (disk full?)");
 }
 
-std::string num(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.9g", v);
-  return buf;
+// One vertex line of the drawings' text meshes, as `format` says ("%.9g" per coordinate, then
+// the rest): one formatting call per line instead of a string and a stream insertion per value.
+template <class... Rest>
+void write_vertex_line(std::ofstream& f, const char* format, const Points& p, Eigen::Index i, double from_mm,
+                       Rest... rest) {
+  char buf[160];
+  const int n = std::snprintf(buf, sizeof buf, format, p(i, 0) * from_mm, p(i, 1) * from_mm, p(i, 2) * from_mm, rest...);
+  f.write(buf, std::min<std::streamsize>(n, sizeof buf - 1));
 }
 
 // The cells of a coarse grid that can hold a point within `reach` of a sample: a cell is marked
@@ -125,8 +129,7 @@ void write_drawings_ply(const fs::path& path, const std::vector<TransferredCurve
     const auto& c = curves[k];
     const Rgb col = drawing_color(c.name, k);
     for (Eigen::Index i = 0; i < c.points.rows(); ++i)
-      f << num(c.points(i, 0) * from_mm) << " " << num(c.points(i, 1) * from_mm) << " " << num(c.points(i, 2) * from_mm)
-        << " " << int(col[0]) << " " << int(col[1]) << " " << int(col[2]) << "\n";
+      write_vertex_line(f, "%.9g %.9g %.9g %d %d %d\n", c.points, i, from_mm, int(col[0]), int(col[1]), int(col[2]));
   }
   first = 0;
   for (const auto& c : curves) {
@@ -144,8 +147,7 @@ void write_drawings_obj(const fs::path& path, const std::vector<TransferredCurve
   f << "# breastfit transferred drawings (polylines)\n";
   for (const auto& c : curves)
     for (Eigen::Index i = 0; i < c.points.rows(); ++i)
-      f << "v " << num(c.points(i, 0) * from_mm) << " " << num(c.points(i, 1) * from_mm) << " "
-        << num(c.points(i, 2) * from_mm) << "\n";
+      write_vertex_line(f, "v %.9g %.9g %.9g\n", c.points, i, from_mm);
   Eigen::Index first = 1;  // OBJ indices are 1-based
   for (const auto& c : curves) {
     const Eigen::Index n = c.points.rows();
