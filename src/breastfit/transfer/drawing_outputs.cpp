@@ -163,13 +163,12 @@ void write_drawings_obj(const fs::path& path, const std::vector<TransferredCurve
   finish(f, path);
 }
 
-TriangleMesh paint_drawings(const TriangleMesh& scan_mm, const std::vector<TransferredCurve>& curves,
-                            const PaintOptions& options) {
+Colors paint_colors(const TriangleMesh& scan_mm, const std::vector<TransferredCurve>& curves,
+                    const PaintOptions& options) {
   if (!(options.width_mm > 0) || !std::isfinite(options.width_mm))
     throw InvalidInput("PaintOptions.width_mm must be > 0 (got " + std::to_string(options.width_mm) + ")");
-  TriangleMesh out = scan_mm;
-  out.C.resize(scan_mm.V.rows(), 3);
-  for (Eigen::Index v = 0; v < out.C.rows(); ++v) out.C.row(v) << options.skin[0], options.skin[1], options.skin[2];
+  Colors out(scan_mm.V.rows(), 3);
+  for (Eigen::Index v = 0; v < out.rows(); ++v) out.row(v) << options.skin[0], options.skin[1], options.skin[2];
   // Dense samples of every curve (spacing well below the band width), indexed once.
   const double half = 0.5 * options.width_mm;
   const double spacing = std::min(0.5, half);
@@ -204,17 +203,30 @@ TriangleMesh paint_drawings(const TriangleMesh& scan_mm, const std::vector<Trans
     for (Index i : near) top = std::max(top, owner[static_cast<size_t>(i)]);
     if (top < 0) continue;
     const Rgb col = drawing_color(curves[static_cast<size_t>(top)].name, static_cast<size_t>(top));
-    out.C.row(v) << col[0], col[1], col[2];
+    out.row(v) << col[0], col[1], col[2];
   }
+  return out;
+}
+
+TriangleMesh paint_drawings(const TriangleMesh& scan_mm, const std::vector<TransferredCurve>& curves,
+                            const PaintOptions& options) {
+  Colors colors = paint_colors(scan_mm, curves, options);
+  TriangleMesh out = scan_mm;
+  out.C = std::move(colors);
   return out;
 }
 
 void write_scan_painted(const fs::path& path, const TriangleMesh& scan_mm, const std::vector<TransferredCurve>& curves,
                         double from_mm, const PaintOptions& options) {
   check_factor(from_mm);
-  TriangleMesh painted = paint_drawings(scan_mm, curves, options);
-  painted.V *= from_mm;
-  painted.N.resize(0, 3);
+  // The painted copy without the normals (not written) and with the vertices scaled as they are
+  // copied: one pass over the scan's arrays instead of a full copy, a scaling and a release.
+  TriangleMesh painted;
+  painted.C = paint_colors(scan_mm, curves, options);
+  painted.V = scan_mm.V * from_mm;
+  painted.F = scan_mm.F;
+  painted.UV = scan_mm.UV;
+  painted.FUV = scan_mm.FUV;
   io::MeshWriteOptions wo;
   wo.colors = true;
   io::write_mesh(path, painted, wo);
