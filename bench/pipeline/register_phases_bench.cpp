@@ -1,8 +1,8 @@
 // Benchmarks of the phases of `breastfit register` around the fit (docs/PERFORMANCE.md), on a
 // synthetic case written to a temporary directory (no external data): reading the scan PLY,
 // loading the template, preparing the scan, the whole register_scan (fit, transfer,
-// measurements) with 1 and 2 threads, painting the scan, and writing every output (without
-// report.html).
+// measurements) with 1 and 2 threads, painting the scan, the drawings' markups text, and
+// writing every output (without report.html).
 #include <benchmark/benchmark.h>
 
 #include <filesystem>
@@ -12,6 +12,7 @@
 
 #include "breastfit/io/io.h"
 #include "breastfit/io/landmarks_io.h"
+#include "breastfit/io/markups.h"
 #include "breastfit/model/template_library.h"
 #include "breastfit/pipeline/register_outputs.h"
 #include "breastfit/pipeline/register_scan.h"
@@ -67,6 +68,13 @@ void BM_PaintScan(benchmark::State& state) {
     benchmark::DoNotOptimize(transfer::paint_drawings(f.result.scan.mesh_mm, f.result.drawings_on_scan).C.data());
 }
 BENCHMARK(BM_PaintScan)->Unit(benchmark::kMillisecond);
+
+/// The text of drawings.mrk.json (the largest of the JSON outputs: every drawing's control points).
+void BM_FormatDrawingMarkups(benchmark::State& state) {
+  auto& f = fixture();
+  for (auto _ : state) benchmark::DoNotOptimize(io::format_markups(f.result.drawings_mm).size());
+}
+BENCHMARK(BM_FormatDrawingMarkups)->Unit(benchmark::kMillisecond);
 
 /// Arg 0: the outputs of `register --no-report-html`; 1: with report.html, as `register` writes
 /// them (the report made on its own thread while the other files are written).

@@ -254,6 +254,90 @@ TEST(Markups, Errors) {
   EXPECT_NE(io_error_of([&] { read_markups(dir); }).find("directory"), std::string::npos);
 }
 
+/// The document as the writer built it before it wrote text directly: a DOM of ordered_json
+/// dumped with indent 1 (the reference the direct writer must match byte for byte).
+std::string dom_markups(const Markups& markups, const MarkupsWriteOptions& options, double scale) {
+  using nlohmann::ordered_json;
+  const bool ras = options.coordinate_system == "RAS";
+  const ordered_json orientation = ras ? ordered_json::array({1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0})
+                                       : ordered_json::array({-1.0, -0.0, -0.0, -0.0, -1.0, -0.0, 0.0, 0.0, 1.0});
+  auto control_point = [&](size_t i, const std::string& label, Vec3 p) {
+    p *= scale;
+    if (ras) p.head<2>() = -p.head<2>();
+    ordered_json cp;
+    cp["id"] = std::to_string(i + 1);
+    cp["label"] = label;
+    cp["description"] = "";
+    cp["associatedNodeID"] = "";
+    cp["position"] = ordered_json::array({p.x(), p.y(), p.z()});
+    cp["orientation"] = orientation;
+    cp["selected"] = true;
+    cp["locked"] = false;
+    cp["visibility"] = true;
+    cp["positionStatus"] = "defined";
+    return cp;
+  };
+  auto markup = [&](const std::string& type, const std::string& name, ordered_json cps) {
+    ordered_json m;
+    m["type"] = type;
+    m["name"] = name;
+    m["coordinateSystem"] = options.coordinate_system;
+    m["coordinateUnits"] = options.units == "m" ? ordered_json::array({"m", "UCUM", "meter"}) : ordered_json("mm");
+    m["locked"] = false;
+    m["fixedNumberOfControlPoints"] = false;
+    m["labelFormat"] = "%N-%d";
+    m["lastUsedControlPointNumber"] = cps.size();
+    m["controlPoints"] = std::move(cps);
+    m["measurements"] = ordered_json::array();
+    return m;
+  };
+  ordered_json doc;
+  doc["@schema"] =
+      "https://raw.githubusercontent.com/slicer/slicer/master/Modules/Loadable/Markups/Resources/"
+      "Schema/markups-schema-v1.0.3.json#";
+  doc["markups"] = ordered_json::array();
+  if (!markups.points.empty()) {
+    ordered_json cps = ordered_json::array();
+    for (size_t i = 0; i < markups.points.size(); ++i)
+      cps.push_back(control_point(i, markups.points[i].name, markups.points[i].position));
+    ordered_json points = markup("Fiducial", options.points_name, std::move(cps));
+    if (options.points_color) {
+      const ordered_json rgb = *options.points_color;
+      points["display"] = {{"color", rgb}, {"selectedColor", rgb}};
+    }
+    doc["markups"].push_back(std::move(points));
+  }
+  for (const Curve& c : markups.curves) {
+    ordered_json cps = ordered_json::array();
+    for (Eigen::Index i = 0; i < c.points.rows(); ++i)
+      cps.push_back(control_point(static_cast<size_t>(i), c.name + "-" + std::to_string(i + 1), c.points.row(i).transpose()));
+    doc["markups"].push_back(markup(c.closed ? "ClosedCurve" : "Curve", c.name, std::move(cps)));
+  }
+  return doc.dump(1) + "\n";
+}
+
+TEST(Markups, TextIsTheSameBytesAsTheJsonLibrarysDump) {
+  Markups m = sample();
+  m.points.push_back({"odd \"name\"\t\xc3\xa9", Vec3(-0.0, 1e-7, -1.2345678901234567e21)});
+  m.curves.push_back(Curve{"empty", false, Points(0, 3)});
+  m.curves[0].points(1, 2) = 5e-324;  // the smallest subnormal
+  for (const std::string cs : {"LPS", "RAS"})
+    for (const std::string units : {"mm", "m"})
+      for (const bool colour : {false, true}) {
+        MarkupsWriteOptions o;
+        o.coordinate_system = cs;
+        o.units = units;
+        if (colour) o.points_color = std::array<double, 3>{0.0, 0.75, 1.0 / 3.0};
+        const double scale = units == "m" ? 1e-3 : 1.0;
+        EXPECT_EQ(format_markups(m, o), dom_markups(m, o, scale)) << cs << " " << units << " " << colour;
+        EXPECT_EQ(format_markups(m, o, "m"), dom_markups(m, o, 1000.0 * scale)) << cs << " " << units;
+      }
+  EXPECT_EQ(format_markups(Markups{}, {}), dom_markups(Markups{}, {}, 1.0));
+  Markups points_only;
+  points_only.points = m.points;
+  EXPECT_EQ(format_markups(points_only, {}), dom_markups(points_only, {}, 1.0));
+}
+
 TEST(Markups, WriteValidatesOptionsAndValues) {
   const fs::path p = test::temp_dir() / "w.mrk.json";
   EXPECT_THROW(write_markups(p, sample(), {.units = "cm"}), InvalidInput);

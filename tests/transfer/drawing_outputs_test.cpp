@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <sstream>
 #include <string>
@@ -139,6 +140,30 @@ TEST(DrawingOutputs, PaintedScanColoursABandAroundTheCurves) {
   EXPECT_TRUE(back.C == painted.C);
   EXPECT_NEAR(back.V(0, 0), -0.1, 1e-6);
   EXPECT_THROW(paint_drawings(scan, sample_curves(), PaintOptions{.width_mm = 0}), InvalidInput);
+}
+
+// write_scan_painted writes the colours and the scaled vertices without copying the whole scan:
+// the same bytes as the painted copy scaled and written without its normals.
+TEST(DrawingOutputs, PaintedScanIsThePaintedCopyScaledAndWritten) {
+  TriangleMesh scan = grid();
+  scan.N = Points::Constant(scan.num_vertices(), 3, 0.0);
+  scan.N.col(2).setOnes();
+  const double from_mm = 0.001;
+  EXPECT_TRUE(paint_colors(scan, sample_curves()) == paint_drawings(scan, sample_curves()).C);
+  TriangleMesh expected = paint_drawings(scan, sample_curves());
+  expected.V *= from_mm;
+  expected.N.resize(0, 3);
+  io::MeshWriteOptions wo;
+  wo.colors = true;
+  const auto dir = test::temp_dir();
+  io::write_mesh(dir / "expected.ply", expected, wo);
+  write_scan_painted(dir / "painted.ply", scan, sample_curves(), from_mm);
+  auto bytes = [](const std::filesystem::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  EXPECT_EQ(bytes(dir / "painted.ply"), bytes(dir / "expected.ply"));
+  EXPECT_THROW(paint_colors(scan, sample_curves(), PaintOptions{.width_mm = -1}), InvalidInput);
 }
 
 // Distance from q to the polyline (closed: with the last segment back to the start).

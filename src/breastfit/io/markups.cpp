@@ -12,6 +12,7 @@
 
 #include "breastfit/core/errors.h"
 #include "breastfit/io/detail/file_bytes.h"
+#include "breastfit/io/detail/json_text.h"
 #include "breastfit/io/detail/text.h"
 
 namespace breastfit::io {
@@ -206,6 +207,108 @@ void MarkupsWriteOptions::validate() const {
       if (!(c >= 0 && c <= 1)) throw InvalidInput("MarkupsWriteOptions.points_color must be RGB values in [0, 1]");
 }
 
+namespace {
+
+// The document as nlohmann's dump(1) printed the DOM the previous writer built (the same bytes:
+// markups_test re-dumps the text and compares), written directly: a drawing's curves have
+// hundreds of control points, and building each as a JSON object of ten keys cost more than
+// printing it. Each level of the document is indented by one more space.
+class MarkupsText {
+ public:
+  MarkupsText(const MarkupsWriteOptions& options, double scale) : options_(options), scale_(scale) {
+    const bool ras = options.coordinate_system == "RAS";
+    const double lps[9] = {-1.0, -0.0, -0.0, -0.0, -1.0, -0.0, 0.0, 0.0, 1.0};
+    const double ras_values[9] = {1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0};
+    orientation_ = "[\n";
+    for (int i = 0; i < 9; ++i) {
+      orientation_ += "      ";
+      detail::append_json_number(orientation_, (ras ? ras_values : lps)[i]);
+      orientation_ += i < 8 ? ",\n" : "\n";
+    }
+    orientation_ += "     ]";
+    detail::append_json_string(coordinate_system_, options.coordinate_system);
+  }
+
+  std::string& text() { return out_; }
+
+  // One markup (level 2 of the document) with `count` control points: `point(i)` gives the i-th
+  // point's position (LPS, input units), `label(out, i)` appends its quoted label and `what(i)`
+  // names it in the error for a non-finite position.
+  template <class Position, class Label, class What>
+  void markup(std::string_view type, std::string_view name, std::size_t count, const Position& point,
+              const Label& label, const What& what) {
+    out_ += "  {\n   \"type\": ";
+    detail::append_json_string(out_, type);
+    out_ += ",\n   \"name\": ";
+    detail::append_json_string(out_, name);
+    out_ += ",\n   \"coordinateSystem\": " + coordinate_system_ + ",\n   \"coordinateUnits\": ";
+    out_ += options_.units == "m" ? "[\n    \"m\",\n    \"UCUM\",\n    \"meter\"\n   ]" : "\"mm\"";
+    out_ +=
+        ",\n   \"locked\": false,\n   \"fixedNumberOfControlPoints\": false,\n   \"labelFormat\": \"%N-%d\",\n"
+        "   \"lastUsedControlPointNumber\": ";
+    detail::append_json_number(out_, count);
+    out_ += ",\n   \"controlPoints\": ";
+    if (count == 0) out_ += "[]";
+    for (std::size_t i = 0; i < count; ++i) {
+      out_ += i == 0 ? "[\n" : ",\n";
+      control_point(i, point(i), label, what);
+    }
+    if (count > 0) out_ += "\n   ]";
+    out_ += ",\n   \"measurements\": []";
+  }
+
+  void color_block(const std::array<double, 3>& rgb) {
+    out_ += ",\n   \"display\": {\n    \"color\": ";
+    color(rgb);
+    out_ += ",\n    \"selectedColor\": ";
+    color(rgb);
+    out_ += "\n   }";
+  }
+
+ private:
+  template <class Label, class What>
+  void control_point(std::size_t i, const Vec3& p_lps, const Label& label, const What& what) {
+    if (!p_lps.allFinite()) throw InvalidInput(what(i) + " has a non-finite coordinate (NaN or Inf)");
+    Vec3 p = p_lps * scale_;
+    if (options_.coordinate_system == "RAS") {
+      p.x() = -p.x();
+      p.y() = -p.y();
+    }
+    out_ += "    {\n     \"id\": \"";
+    detail::append_json_number(out_, i + 1);
+    out_ += "\",\n     \"label\": ";
+    label(out_, i);
+    out_ += ",\n     \"description\": \"\",\n     \"associatedNodeID\": \"\",\n     \"position\": [\n      ";
+    detail::append_json_number(out_, p.x());
+    out_ += ",\n      ";
+    detail::append_json_number(out_, p.y());
+    out_ += ",\n      ";
+    detail::append_json_number(out_, p.z());
+    out_ += "\n     ],\n     \"orientation\": ";
+    out_ += orientation_;
+    out_ +=
+        ",\n     \"selected\": true,\n     \"locked\": false,\n     \"visibility\": true,\n"
+        "     \"positionStatus\": \"defined\"\n    }";
+  }
+  void color(const std::array<double, 3>& rgb) {
+    out_ += "[\n";
+    for (int k = 0; k < 3; ++k) {
+      out_ += "     ";
+      detail::append_json_number(out_, rgb[static_cast<std::size_t>(k)]);
+      out_ += k < 2 ? ",\n" : "\n";
+    }
+    out_ += "    ]";
+  }
+
+  const MarkupsWriteOptions& options_;
+  double scale_;
+  std::string orientation_;        // the constant orientation array at its indentation
+  std::string coordinate_system_;  // quoted
+  std::string out_;
+};
+
+}  // namespace
+
 std::string format_markups(const Markups& markups, const MarkupsWriteOptions& options,
                            std::string_view input_units) {
   options.validate();
@@ -213,76 +316,47 @@ std::string format_markups(const Markups& markups, const MarkupsWriteOptions& op
     throw InvalidInput("format_markups: input units '" + std::string(input_units) + "' is not one of mm, m");
   const double in_to_mm = input_units == "m" ? 1000.0 : 1.0;
   const double mm_to_out = options.units == "m" ? 1e-3 : 1.0;
-  const double scale = in_to_mm * mm_to_out;
-  const bool ras = options.coordinate_system == "RAS";
-  const ordered_json units_json =
-      options.units == "m" ? ordered_json::array({"m", "UCUM", "meter"}) : ordered_json("mm");
-  const ordered_json orientation =
-      ras ? ordered_json::array({1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0})
-          : ordered_json::array({-1.0, -0.0, -0.0, -0.0, -1.0, -0.0, 0.0, 0.0, 1.0});
-
-  auto control_point = [&](size_t i, const std::string& label, const Vec3& p_lps,
-                           const std::string& what) {
-    if (!p_lps.allFinite()) throw InvalidInput(what + " has a non-finite coordinate (NaN or Inf)");
-    Vec3 p = p_lps * scale;
-    if (ras) {
-      p.x() = -p.x();
-      p.y() = -p.y();
-    }
-    ordered_json cp;
-    cp["id"] = std::to_string(i + 1);
-    cp["label"] = label;
-    cp["description"] = "";
-    cp["associatedNodeID"] = "";
-    cp["position"] = ordered_json::array({p.x(), p.y(), p.z()});
-    cp["orientation"] = orientation;
-    cp["selected"] = true;
-    cp["locked"] = false;
-    cp["visibility"] = true;
-    cp["positionStatus"] = "defined";
-    return cp;
-  };
-  auto markup = [&](const std::string& type, const std::string& name, ordered_json cps) {
-    ordered_json m;
-    m["type"] = type;
-    m["name"] = name;
-    m["coordinateSystem"] = options.coordinate_system;
-    m["coordinateUnits"] = units_json;
-    m["locked"] = false;
-    m["fixedNumberOfControlPoints"] = false;
-    m["labelFormat"] = "%N-%d";
-    m["lastUsedControlPointNumber"] = cps.size();
-    m["controlPoints"] = std::move(cps);
-    m["measurements"] = ordered_json::array();
-    return m;
-  };
-
-  ordered_json doc;
-  doc["@schema"] =
-      "https://raw.githubusercontent.com/slicer/slicer/master/Modules/Loadable/Markups/Resources/"
-      "Schema/markups-schema-v1.0.3.json#";
-  doc["markups"] = ordered_json::array();
+  MarkupsText doc(options, in_to_mm * mm_to_out);
+  std::string& out = doc.text();
+  std::size_t points = 0;
+  for (const Curve& c : markups.curves) points += static_cast<std::size_t>(c.points.rows());
+  out.reserve(1024 + 640 * (points + markups.points.size()));
+  out +=
+      "{\n \"@schema\": \"https://raw.githubusercontent.com/slicer/slicer/master/Modules/Loadable/Markups/"
+      "Resources/Schema/markups-schema-v1.0.3.json#\",\n \"markups\": ";
+  const std::size_t count = (markups.points.empty() ? 0 : 1) + markups.curves.size();
+  if (count == 0) out += "[]";
+  std::size_t written = 0;
+  auto next_markup = [&] { out += written++ == 0 ? "[\n" : ",\n"; };
   if (!markups.points.empty()) {
-    ordered_json cps = ordered_json::array();
-    for (size_t i = 0; i < markups.points.size(); ++i)
-      cps.push_back(control_point(i, markups.points[i].name, markups.points[i].position,
-                                  "point '" + markups.points[i].name + "'"));
-    ordered_json points = markup("Fiducial", options.points_name, std::move(cps));
-    if (options.points_color) {
-      const ordered_json rgb = *options.points_color;
-      points["display"] = {{"color", rgb}, {"selectedColor", rgb}};
-    }
-    doc["markups"].push_back(std::move(points));
+    next_markup();
+    doc.markup(
+        "Fiducial", options.points_name, markups.points.size(), [&](std::size_t i) { return markups.points[i].position; },
+        [&](std::string& o, std::size_t i) { detail::append_json_string(o, markups.points[i].name); },
+        [&](std::size_t i) { return "point '" + markups.points[i].name + "'"; });
+    if (options.points_color) doc.color_block(*options.points_color);
+    out += "\n  }";
   }
   for (const Curve& c : markups.curves) {
-    ordered_json cps = ordered_json::array();
-    for (Eigen::Index i = 0; i < c.points.rows(); ++i)
-      cps.push_back(control_point(static_cast<size_t>(i), c.name + "-" + std::to_string(i + 1),
-                                  c.points.row(i).transpose(),
-                                  "curve '" + c.name + "' point " + std::to_string(i + 1)));
-    doc["markups"].push_back(markup(c.closed ? "ClosedCurve" : "Curve", c.name, std::move(cps)));
+    next_markup();
+    std::string quoted;  // the curve's name quoted, without its closing quote: labels are name-i
+    detail::append_json_string(quoted, c.name);
+    quoted.pop_back();
+    doc.markup(
+        c.closed ? "ClosedCurve" : "Curve", c.name, static_cast<std::size_t>(c.points.rows()),
+        [&](std::size_t i) { return Vec3(c.points.row(static_cast<Eigen::Index>(i)).transpose()); },
+        [&](std::string& o, std::size_t i) {
+          o += quoted;
+          o += '-';
+          detail::append_json_number(o, i + 1);
+          o += '"';
+        },
+        [&](std::size_t i) { return "curve '" + c.name + "' point " + std::to_string(i + 1); });
+    out += "\n  }";
   }
-  return doc.dump(1) + "\n";
+  if (count > 0) out += "\n ]";
+  out += "\n}\n";
+  return std::move(out);
 }
 
 void write_markups(const std::filesystem::path& path, const Markups& markups,

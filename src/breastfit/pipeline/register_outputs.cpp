@@ -58,19 +58,17 @@ void write_register_outputs(const fs::path& dir, const RegisterResult& r, const 
   check_output_dir(dir, force, protected_paths);
   io::OutputSet set(dir, register_output_names(), "report.json");
 
-  // The files are written by up to three threads, each taking the next group in order:
-  // report.html (rendering its figures is most of its cost), the painted scan with the drawings'
-  // meshes, and the fitted model with the JSON files. The bytes are the same either way; the
-  // first group's error in this order is rethrown once all have run.
+  // The files are written by up to three threads (two without report.html), each taking the
+  // next group in order: report.html (rendering its figures is most of its cost), the painted
+  // scan, the fitted model with the JSON files, and last the drawings' small meshes, for the
+  // thread that is free first. The bytes are the same either way; the first group's error in
+  // this order is rethrown once all have run.
   const double from_mm = 1.0 / r.scan.to_mm;
   std::vector<std::function<void()>> groups;
   if (options.report_html)
     groups.emplace_back([&] { write_report_html(set.path("report.html"), r, model, options.figures, options.layers); });
-  groups.emplace_back([&] {
-    transfer::write_scan_painted(set.path("scan_painted.ply"), r.scan.mesh_mm, r.drawings_on_scan, from_mm);
-    transfer::write_drawings_ply(set.path("drawings.ply"), r.drawings_on_scan, from_mm);
-    transfer::write_drawings_obj(set.path("drawings.obj"), r.drawings_on_scan, from_mm);
-  });
+  groups.emplace_back(
+      [&] { transfer::write_scan_painted(set.path("scan_painted.ply"), r.scan.mesh_mm, r.drawings_on_scan, from_mm); });
   groups.emplace_back([&] {
     TriangleMesh fitted = r.fitted_mm;
     fitted.V *= from_mm;
@@ -99,7 +97,12 @@ void write_register_outputs(const fs::path& dir, const RegisterResult& r, const 
     write_json(set.path("params.json"), params);
     write_json(set.path("report.json"), report_json(r));
   });
-  run_in_order(groups.size(), static_cast<unsigned>(groups.size()), [&](std::size_t g) { groups[g](); });
+  groups.emplace_back([&] {
+    transfer::write_drawings_ply(set.path("drawings.ply"), r.drawings_on_scan, from_mm);
+    transfer::write_drawings_obj(set.path("drawings.obj"), r.drawings_on_scan, from_mm);
+  });
+  const unsigned threads = options.report_html ? 3 : 2;
+  run_in_order(groups.size(), threads, [&](std::size_t g) { groups[g](); });
   set.commit();  // without report.html, the previous run's report.html goes
 }
 

@@ -39,6 +39,11 @@ struct PaintOptions {
   Rgb skin{224, 182, 160};      ///< colour of every other vertex
 };
 
+/// The colours paint_drawings gives the scan's vertices (#V by 3), without copying the scan.
+/// \throws InvalidInput for a non-positive width
+Colors paint_colors(const TriangleMesh& scan_mm, const std::vector<TransferredCurve>& curves,
+                    const PaintOptions& options = {});
+
 /// The scan (mm) with vertex colours: the drawing colour within width/2 of a curve, skin elsewhere;
 /// where bands overlap the later curve of `curves` is on top. Vertices and faces are unchanged.
 /// \throws InvalidInput for a non-positive width
