@@ -219,13 +219,7 @@ class MarkupsText {
     const bool ras = options.coordinate_system == "RAS";
     const double lps[9] = {-1.0, -0.0, -0.0, -0.0, -1.0, -0.0, 0.0, 0.0, 1.0};
     const double ras_values[9] = {1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0};
-    orientation_ = "[\n";
-    for (int i = 0; i < 9; ++i) {
-      orientation_ += "      ";
-      detail::append_json_number(orientation_, (ras ? ras_values : lps)[i]);
-      orientation_ += i < 8 ? ",\n" : "\n";
-    }
-    orientation_ += "     ]";
+    number_array(orientation_, ras ? ras_values : lps, 9, 5);
     detail::append_json_string(coordinate_system_, options.coordinate_system);
   }
 
@@ -290,14 +284,18 @@ class MarkupsText {
         ",\n     \"selected\": true,\n     \"locked\": false,\n     \"visibility\": true,\n"
         "     \"positionStatus\": \"defined\"\n    }";
   }
-  void color(const std::array<double, 3>& rgb) {
-    out_ += "[\n";
-    for (int k = 0; k < 3; ++k) {
-      out_ += "     ";
-      detail::append_json_number(out_, rgb[static_cast<std::size_t>(k)]);
-      out_ += k < 2 ? ",\n" : "\n";
+  void color(const std::array<double, 3>& rgb) { number_array(out_, rgb.data(), 3, 4); }
+  // A non-empty array of numbers as dump(1) prints it at a member indented by `indent` spaces:
+  // one number a line, one space deeper, then the closing bracket at the member's indentation.
+  static void number_array(std::string& out, const double* values, int count, int indent) {
+    out += "[\n";
+    for (int i = 0; i < count; ++i) {
+      out.append(static_cast<std::size_t>(indent + 1), ' ');
+      detail::append_json_number(out, values[i]);
+      out += i + 1 < count ? ",\n" : "\n";
     }
-    out_ += "    ]";
+    out.append(static_cast<std::size_t>(indent), ' ');
+    out += ']';
   }
 
   const MarkupsWriteOptions& options_;
