@@ -8,7 +8,9 @@
 /// the insertions are up to 25 mm apart across the midline). Its offset from the acromion on the
 /// same side follows the arm: in the sternum's frame (shoulder_landmarks.h: along the sternum,
 /// front, towards the side), offset ≈ c₀ + C·a, with a the fitted upper arm's axis in that frame
-/// (pectoral_insertion.h upper_arm_axis: the fit follows the scan's arm, not one click). Fitted by
+/// (pectoral_insertion.h upper_arm_axis; since session 22 the arm at the insertion's own leave-one-out
+/// step: where the scan ends the fitted arm turns towards a misplaced click, by up to 24–48° for a
+/// 40 mm walk, and the check read the click's own arm — docs/REGISTRATION.md). Fitted by
 /// least squares to the landmarks as given on the 14 benchmark and 16 generated validation cases and
 /// to the truth of 20 template-made synthetic torsos (seeds 11, 12, 21–28, standing and supine):
 /// the residuals' largest magnitudes are 9.6 / 10.9 / 13.4 mm on the first 30 (standard deviations

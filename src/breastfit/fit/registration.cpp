@@ -1,6 +1,7 @@
 #include "breastfit/fit/registration.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <memory>
 #include <optional>
@@ -565,12 +566,36 @@ std::optional<SternumFrame> fitted_sternum_frame(const model::RiggedModel& model
   return sternum_frame(p[0], p[1], p[2], p[3], side);
 }
 
-// Each given pectoral insertion against the same side's acromion and the fitted arm
-// (pectoral_check.h), in the fitted sternum's frame; skipped when that acromion is suspect itself
-// (beyond its prediction's or its pair's tolerance: the reference would be wrong).
+// Each given pectoral insertion's upper arm axis (pectoral_insertion.h upper_arm_axis) at the
+// insertion's own leave-one-out step (predict_given's `steps`): the arm where the scan and the
+// other landmarks put it. The fitted arm follows a misplaced insertion — where the scan ends the arm
+// is weakly held, and the fit turns it towards the click (a validation case's insertion walked
+// 40 mm: the upper arm turned by 24°), so the insertion's check read the click's own arm
+// (docs/REGISTRATION.md, session 22). nullopt for a side without a given insertion or a step.
+using InsertionArms = std::array<std::optional<Vec3>, 2>;  // right, left
+InsertionArms left_out_insertion_arms(const model::RiggedModel& model, Problem& problem,
+                                      const model::PoseParams& params, const std::vector<LandmarkTarget>& given,
+                                      const std::vector<model::PoseParams>& steps) {
+  InsertionArms arms;
+  for (size_t i = 0; i < given.size() && i < steps.size(); ++i)
+    for (int side = 0; side < 2; ++side) {
+      const std::string s = side == 0 ? "R" : "L";
+      if (given[i].name != "pectoral_insertion_" + s) continue;
+      problem.evaluator().set_params(steps[i]);
+      arms[static_cast<size_t>(side)] = upper_arm_axis(model, problem.evaluator().vertices(), steps[i], s);
+    }
+  problem.evaluator().set_params(params);
+  return arms;
+}
+
+// Each given pectoral insertion against the same side's acromion and the arm (pectoral_check.h) —
+// the arm at the insertion's leave-one-out step where there is one (`arms`), else the fitted arm —
+// in the fitted sternum's frame; skipped when that acromion is suspect itself (beyond its
+// prediction's or its pair's tolerance: the reference would be wrong).
 void check_insertions(const model::RiggedModel& model, const Points& V, const model::PoseParams& params,
                       const std::vector<LandmarkTarget>& given, const std::vector<Vec3>& predicted,
-                      const FitOptions& options, std::vector<std::optional<AnatomyCheck>>& out) {
+                      const InsertionArms& arms, const FitOptions& options,
+                      std::vector<std::optional<AnatomyCheck>>& out) {
   const auto index_of = [&](const std::string& name) {
     return static_cast<size_t>(
         std::find_if(given.begin(), given.end(), [&](const LandmarkTarget& t) { return t.name == name; }) -
@@ -585,7 +610,8 @@ void check_insertions(const model::RiggedModel& model, const Points& V, const mo
         (a < predicted.size() && (predicted[a] - given[a].position).norm() >
                                      placed_landmark_tolerance_mm(given[a].name, options.landmark_check_mm));
     const auto frame = fitted_sternum_frame(model, V, params, side);
-    const auto arm = upper_arm_axis(model, V, params, s);
+    const auto& left_out = arms[side == 'R' ? 0 : 1];
+    const auto arm = left_out ? left_out : upper_arm_axis(model, V, params, s);
     if (acromion_suspect || !frame || !arm) continue;
     const PectoralCheck c =
         check_pectoral_insertion(*frame, *arm, given[i].position, given[a].position, options.landmark_check_mm);
@@ -749,7 +775,8 @@ void check_nipple_bumps(const std::vector<LandmarkTarget>& given, const FitOptio
 std::vector<std::optional<AnatomyCheck>> check_anatomy(const model::RiggedModel& model, Problem& problem,
                                                        const model::PoseParams& params, const ScanTarget& scan,
                                                        const std::vector<LandmarkTarget>& given,
-                                                       const std::vector<Vec3>& predicted, const FitOptions& options) {
+                                                       const std::vector<Vec3>& predicted, const InsertionArms& arms,
+                                                       const FitOptions& options) {
   std::vector<std::optional<AnatomyCheck>> out(given.size());
   auto& ev = problem.evaluator();
   ev.set_params(params);
@@ -773,7 +800,7 @@ std::vector<std::optional<AnatomyCheck>> check_anatomy(const model::RiggedModel&
   }
   std::vector<std::optional<AnatomyCheck>> unblamed(given.size());
   check_pairs(given, predicted, options, out, unblamed);
-  check_insertions(model, V, params, given, predicted, options, out);
+  check_insertions(model, V, params, given, predicted, arms, options, out);
   check_agreement(model, V, params, axes, given, predicted, options, nipples, out, unblamed);
   check_nipple_bumps(given, options, nipples, out);
   return out;
@@ -791,12 +818,14 @@ PlacedCheck hold_off_misplaced(const model::RiggedModel& model, ScanTarget& scan
   out.held_off.assign(given.size(), 1.0);
   out.flagged.assign(given.size(), false);
   if (cut_short(summary.termination)) return out;
+  InsertionArms arms;
   if (given.size() >= kMinLandmarksToPredict) {
     std::vector<model::PoseParams> linear_steps;
     out.predicted = predict_given(*problem, params, options, given.size(), &linear_steps);
     relinearize_suspects(*problem, params, options, given, out.predicted, linear_steps);
+    arms = left_out_insertion_arms(model, *problem, params, given, linear_steps);
   }
-  out.anatomy = check_anatomy(model, *problem, params, scan, given, out.predicted, options);
+  out.anatomy = check_anatomy(model, *problem, params, scan, given, out.predicted, arms, options);
   std::vector<size_t> off;
   for (size_t i = 0; i < given.size(); ++i) {
     double factor = 1.0;
