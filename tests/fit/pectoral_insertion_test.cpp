@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -48,6 +49,29 @@ TEST(PectoralInsertion, TheArmAxisPointsFromTheShoulderDown) {
   }
   const model::RiggedModel& model = *test::default_template();
   EXPECT_FALSE(upper_arm_axis(model, model::pose_vertices(model, c.true_params_scan), c.true_params_scan, "X"));
+}
+
+// Posing only the rows upper_arm_axis reads gives the same axis, bit for bit, as posing the whole
+// mesh (the insertion's check poses only them at its leave-one-out step): both sides, both poses.
+TEST(PectoralInsertion, TheArmAxisFromItsRowsAloneIsTheSameBits) {
+  const model::RiggedModel& model = *test::default_template();
+  for (const auto pose : {synth::PoseType::Standing, synth::PoseType::Supine}) {
+    const synth::SynthCase& c = synth_case(pose);
+    model::PoseEvaluator ev(model);
+    ev.set_params(c.true_params_scan);
+    for (const char* side : {"R", "L"}) {
+      const std::vector<Index> rows = upper_arm_axis_rows(model, side);
+      ASSERT_GT(rows.size(), 10u) << side;
+      EXPECT_TRUE(std::is_sorted(rows.begin(), rows.end()));
+      Points V = Points::Zero(model.rest.V.rows(), 3);
+      ev.pose_rows(c.true_params_scan, rows, V);
+      const auto whole = upper_arm_axis(model, ev.vertices(), c.true_params_scan, side);
+      const auto alone = upper_arm_axis(model, V, c.true_params_scan, side);
+      ASSERT_TRUE(whole && alone) << side;
+      EXPECT_EQ(*whole, *alone) << side;
+    }
+  }
+  EXPECT_TRUE(upper_arm_axis_rows(model, "X").empty());
 }
 
 // A chest and a hanging arm seen from the front (x lateral, y anterior, z up, mm): the chest's

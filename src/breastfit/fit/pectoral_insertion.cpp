@@ -1,5 +1,6 @@
 #include "breastfit/fit/pectoral_insertion.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -71,15 +72,38 @@ std::optional<Vec3> pectoral_insertion_on_scan(const Points& scan_vertices, cons
   return std::nullopt;
 }
 
-std::optional<Vec3> upper_arm_axis(const model::RiggedModel& model, const Points& V, const model::PoseParams& params,
-                                   const std::string& side) {
-  const auto bone = model.bone_index("upper_arm_" + side);
-  const auto acromion = model.landmark_index("acromion_" + side);
-  if (!bone || !acromion) return std::nullopt;
+namespace {
+
+// The vertices the upper arm's bone of `side` mostly moves (weight above 0.6), ascending; empty
+// without the bone.
+std::vector<Index> arm_vertices(const model::RiggedModel& model, const std::string& side) {
   std::vector<Index> arm;
+  const auto bone = model.bone_index("upper_arm_" + side);
+  if (!bone) return arm;
   for (Index i = 0; i < model.weights.outerSize(); ++i)
     for (model::SkinWeights::InnerIterator it(model.weights, i); it; ++it)
       if (it.col() == *bone && it.value() > 0.6) arm.push_back(i);
+  return arm;
+}
+
+}  // namespace
+
+std::vector<Index> upper_arm_axis_rows(const model::RiggedModel& model, const std::string& side) {
+  const auto acromion = model.landmark_index("acromion_" + side);
+  std::vector<Index> rows = arm_vertices(model, side);
+  if (!acromion || rows.empty()) return {};
+  const Index face = model.landmarks[static_cast<size_t>(*acromion)].point.face;
+  for (int k = 0; k < 3; ++k) rows.push_back(model.rest.F(face, k));
+  std::sort(rows.begin(), rows.end());
+  rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
+  return rows;
+}
+
+std::optional<Vec3> upper_arm_axis(const model::RiggedModel& model, const Points& V, const model::PoseParams& params,
+                                   const std::string& side) {
+  const auto acromion = model.landmark_index("acromion_" + side);
+  if (!acromion) return std::nullopt;
+  const std::vector<Index> arm = arm_vertices(model, side);
   if (arm.size() < 10) return std::nullopt;
   Vec3 mean = Vec3::Zero();
   for (Index i : arm) mean += V.row(i).transpose();

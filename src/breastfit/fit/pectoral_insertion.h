@@ -19,6 +19,7 @@
 /// scan; it is not held in the fit (held from the shape stage on, it moved the arm and shoulder with
 /// it and cost 0.1 mm of landmark MAE on hold-out torsos: docs/REGISTRATION.md).
 #include <optional>
+#include <vector>
 
 #include <string>
 
@@ -60,5 +61,10 @@ std::optional<Vec3> pectoral_insertion_on_scan(const Points& scan_vertices, cons
 /// \param side "R" or "L"
 std::optional<Vec3> upper_arm_axis(const model::RiggedModel& model, const Points& V, const model::PoseParams& params,
                                    const std::string& side);
+
+/// The vertices upper_arm_axis reads for `side`, ascending: its arm's and its acromion's triangle's
+/// corners. Posing only these (model::PoseEvaluator::pose_rows) gives the same axis, bit for bit, as
+/// posing the whole mesh. Empty when the model has no such bone or landmark.
+std::vector<Index> upper_arm_axis_rows(const model::RiggedModel& model, const std::string& side);
 
 }  // namespace breastfit::fit

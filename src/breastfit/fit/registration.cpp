@@ -573,18 +573,21 @@ std::optional<SternumFrame> fitted_sternum_frame(const model::RiggedModel& model
 // 40 mm: the upper arm turned by 24°), so the insertion's check read the click's own arm
 // (docs/REGISTRATION.md, session 22). nullopt for a side without a given insertion or a step.
 using InsertionArms = std::array<std::optional<Vec3>, 2>;  // right, left
-InsertionArms left_out_insertion_arms(const model::RiggedModel& model, Problem& problem,
-                                      const model::PoseParams& params, const std::vector<LandmarkTarget>& given,
+// Only the vertices the axis reads are posed (upper_arm_axis_rows: the same bits as posing the whole
+// mesh); the evaluator stays where it is.
+InsertionArms left_out_insertion_arms(const model::RiggedModel& model, const model::PoseEvaluator& evaluator,
+                                      const std::vector<LandmarkTarget>& given,
                                       const std::vector<model::PoseParams>& steps) {
   InsertionArms arms;
+  Points V;
   for (size_t i = 0; i < given.size() && i < steps.size(); ++i)
     for (int side = 0; side < 2; ++side) {
       const std::string s = side == 0 ? "R" : "L";
       if (given[i].name != "pectoral_insertion_" + s) continue;
-      problem.evaluator().set_params(steps[i]);
-      arms[static_cast<size_t>(side)] = upper_arm_axis(model, problem.evaluator().vertices(), steps[i], s);
+      if (V.rows() == 0) V = Points::Zero(evaluator.vertices().rows(), 3);
+      evaluator.pose_rows(steps[i], upper_arm_axis_rows(model, s), V);
+      arms[static_cast<size_t>(side)] = upper_arm_axis(model, V, steps[i], s);
     }
-  problem.evaluator().set_params(params);
   return arms;
 }
 
@@ -615,7 +618,9 @@ void check_insertions(const model::RiggedModel& model, const Points& V, const mo
     if (acromion_suspect || !frame || !arm) continue;
     const PectoralCheck c =
         check_pectoral_insertion(*frame, *arm, given[i].position, given[a].position, options.landmark_check_mm);
-    out[i] = AnatomyCheck{c.distance_mm, c.tolerance_mm, "where 'acromion_" + s + "' and the fitted arm put it"};
+    out[i] = AnatomyCheck{c.distance_mm, c.tolerance_mm,
+                          "where 'acromion_" + s + (left_out ? "' and the arm fitted without it" : "' and the fitted arm") +
+                              " put it"};
   }
 }
 
@@ -823,7 +828,7 @@ PlacedCheck hold_off_misplaced(const model::RiggedModel& model, ScanTarget& scan
     std::vector<model::PoseParams> linear_steps;
     out.predicted = predict_given(*problem, params, options, given.size(), &linear_steps);
     relinearize_suspects(*problem, params, options, given, out.predicted, linear_steps);
-    arms = left_out_insertion_arms(model, *problem, params, given, linear_steps);
+    arms = left_out_insertion_arms(model, problem->evaluator(), given, linear_steps);
   }
   out.anatomy = check_anatomy(model, *problem, params, scan, given, out.predicted, arms, options);
   std::vector<size_t> off;
