@@ -8,8 +8,10 @@
 #include <cmath>
 #include <vector>
 
+#include "breastfit/core/errors.h"
 #include "breastfit/fit/landmark_check.h"
 #include "breastfit/mesh/normals.h"
+#include "breastfit/spatial/closest_point_index.h"
 #include "support/test_shapes.h"
 
 namespace breastfit::fit {
@@ -64,7 +66,7 @@ TEST(SkinAround, KeepsEveryVertexWhereNoFragmentIsNear) {
 // A hole around the nipple (a band 10–14 mm from it) open only towards +x, where a strip between two
 // slits leads out beyond 40 mm: within 40 mm the nipple's cap is a piece of its own, smaller than the
 // rest, but on the whole scan it is one piece with it. The tip stays on the cap.
-TEST(SkinAround, AHoleNearTheNippleDoesNotCutTheSkinOffTheBreast) {
+TriangleMesh sphere_with_hole_around_nipple() {
   const TriangleMesh sphere = test::sphere_mesh(60.0, Vec3::Zero(), 96, 192);
   TriangleMesh holed;
   holed.V = sphere.V;
@@ -78,6 +80,11 @@ TEST(SkinAround, AHoleNearTheNippleDoesNotCutTheSkinOffTheBreast) {
   }
   holed.F.resize(static_cast<Index>(kept.size()), 3);
   for (size_t k = 0; k < kept.size(); ++k) holed.F.row(static_cast<Index>(k)) = kept[k];
+  return holed;
+}
+
+TEST(SkinAround, AHoleNearTheNippleDoesNotCutTheSkinOffTheBreast) {
+  const TriangleMesh holed = sphere_with_hole_around_nipple();
   const Points N = mesh::vertex_normals(holed);
   const SkinPatch skin = skin_around(holed, N, skin_vertices(holed), kNipple, 40.0);
   const auto tip = breast_tip_on_scan(skin.V, skin.V, skin.N, kNipple);
@@ -94,6 +101,40 @@ TEST(SkinAround, APointCloudIsSkinEverywhere) {
   for (Index i = 0; i < cloud.V.rows(); ++i) near += (cloud.V.row(i).transpose() - kNipple).norm() < 40.0;
   EXPECT_EQ(skin.V.rows(), near);  // the fragment's vertices too: a cloud has no pieces
   EXPECT_EQ(skin_around(cloud, N, skin_vertices(cloud), Vec3(0, -500, 0), 40.0).V.rows(), 0);
+}
+
+// Through the scan's index (ClosestPointIndex::vertices_within): the pass over every vertex's patch
+// bit for bit — the same vertices in the same order, with their normals — on a breast with a
+// fragment, a holed one, and with vertices no triangle uses (never skin), around centres on and
+// off the surface, with vertices exactly at the radius (not kept: the test is strict) and a few
+// ulps inside it.
+TEST(SkinAround, ThroughTheIndexIsThePassOverEveryVertex) {
+  TriangleMesh unused = breast_with_fragment();
+  unused.V.conservativeResize(unused.V.rows() + 2, 3);
+  unused.V.row(unused.V.rows() - 2) = kNipple.transpose();  // on the nipple, but on no triangle
+  unused.V.row(unused.V.rows() - 1) << 0, -50, 0;
+  for (const TriangleMesh& scan : {breast_with_fragment(), sphere_with_hole_around_nipple(), unused}) {
+    const spatial::ClosestPointIndex index(scan);
+    const Points N = mesh::vertex_normals(scan);
+    const std::vector<char> skin = skin_vertices(scan);
+    const Vec3 on_surface = scan.V.row(17).transpose();
+    for (const Vec3& centre : {kNipple, Vec3(0, -88, 0), Vec3(10, -70, 5), on_surface, Vec3(0, -500, 0)}) {
+      // Radii: the distance of a vertex from the centre exactly (that vertex is left out), a few
+      // ulps more (kept), and round ones.
+      const double exact = (scan.V.row(5).transpose() - centre).norm();
+      for (const double radius : {40.0, 12.5, exact, std::nextafter(exact, 1e9), exact * (1 + 4e-16), 0.0}) {
+        const SkinPatch by_pass = skin_around(scan, N, skin, centre, radius);
+        const SkinPatch by_index = skin_around(index, N, skin, centre, radius);
+        ASSERT_EQ(by_index.V.rows(), by_pass.V.rows()) << "centre " << centre.transpose() << " radius " << radius;
+        EXPECT_TRUE((by_index.V.array() == by_pass.V.array()).all());
+        EXPECT_TRUE((by_index.N.array() == by_pass.N.array()).all());
+      }
+    }
+    EXPECT_GT(skin_around(index, N, skin, kNipple, 40.0).V.rows(), 100);
+  }
+  const spatial::ClosestPointIndex index(unused);
+  const Points N = mesh::vertex_normals(unused);
+  EXPECT_THROW(skin_around(index, N, skin_vertices(unused), kNipple, -1.0), InvalidInput);
 }
 
 }  // namespace

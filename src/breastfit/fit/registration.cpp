@@ -663,9 +663,10 @@ constexpr double kNippleSkinRadiusMm = 40.0;
 
 // The searches of every given nipple (empty slots for the other landmarks). They read only the
 // scan and the fitted model, and each writes its own slot: with options.threads >= 2 they run side
-// by side, the same bits as one after the other. The skin's labels (skin_vertices: a pass over
-// every scan triangle, serial) are needed by the tips and apexes only: they are computed beside
-// the bumps, then the tips and apexes of the nipples side by side.
+// by side, the same bits as one after the other. The skin's labels (ScanTarget::skin: a pass over
+// every scan triangle, serial, on the target's first fit only) are needed by the tips and apexes
+// only: they are computed beside the bumps, then the tips and apexes of the nipples side by side,
+// each on the skin around it through the scan's index.
 std::vector<NippleSearch> search_nipples(const model::RiggedModel& model, const Points& V,
                                          const model::PoseParams& params, const ScanTarget& scan,
                                          const std::optional<BodyAxes>& axes, const std::vector<LandmarkTarget>& given,
@@ -680,10 +681,9 @@ std::vector<NippleSearch> search_nipples(const model::RiggedModel& model, const 
   const auto near_of = [&](size_t i) {
     return i < predicted.size() ? predicted[i] : model_landmark_position(model, given[i].model_landmark, V, params);
   };
-  std::vector<char> skin;  // chunk 0; the bumps chunks 1, 2
   for_each_chunk(static_cast<Index>(nipples.size()) + 1, 1, options.threads, [&](Index chunk, Index, Index) {
     if (chunk == 0) {
-      skin = skin_vertices(scan.mesh());
+      scan.skin();  // labelled here the target's first time (chunk 0; the bumps chunks 1, 2)
       return;
     }
     const size_t i = nipples[static_cast<size_t>(chunk - 1)];
@@ -695,12 +695,12 @@ std::vector<NippleSearch> search_nipples(const model::RiggedModel& model, const 
     const Vec3 near = near_of(i);
     NippleSearch& found = out[i];
     // On the skin only: a floating fragment in front of the breast is not its tip (session 20).
-    const SkinPatch around = skin_around(scan.mesh(), N, skin, near, kNippleSkinRadiusMm);
+    const SkinPatch around = skin_around(scan.index(), N, scan.skin(), near, kNippleSkinRadiusMm);
     found.tip = breast_tip_on_scan(around.V, around.V, around.N, near);
     const Vec3 apex_centre = i < predicted.size() ? predicted[i] : t.position;
     if (axes && fitted_sternum_frame(model, V, params, t.name.back())) {
       const SkinPatch apex_skin =
-          apex_centre == near ? SkinPatch{} : skin_around(scan.mesh(), N, skin, apex_centre, kNippleSkinRadiusMm);
+          apex_centre == near ? SkinPatch{} : skin_around(scan.index(), N, scan.skin(), apex_centre, kNippleSkinRadiusMm);
       const SkinPatch& a = apex_centre == near ? around : apex_skin;
       found.apex = nipple_apex_on_scan(a.V, a.V, a.N, apex_centre, axes->up);
     }

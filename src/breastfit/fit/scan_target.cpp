@@ -2,16 +2,23 @@
 
 #include <algorithm>
 #include <cmath>
+#include <mutex>
 
 #include "breastfit/core/errors.h"
 #include "breastfit/core/rng.h"
 #include "breastfit/fit/parallel_chunks.h"
+#include "breastfit/fit/skin_around.h"
 #include "breastfit/mesh/normals.h"
 #include "breastfit/spatial/closest_point_index.h"
 
 namespace breastfit::fit {
 
-ScanTarget::ScanTarget(const TriangleMesh& scan_mm, int num_samples, int threads) {
+struct ScanTarget::Skin {
+  std::once_flag once;
+  std::vector<char> labels;
+};
+
+ScanTarget::ScanTarget(const TriangleMesh& scan_mm, int num_samples, int threads) : skin_(std::make_unique<Skin>()) {
   if (scan_mm.num_faces() == 0) throw InvalidInput("the scan has no triangles");
   index_ = std::make_unique<spatial::ClosestPointIndex>(scan_mm, resolve_threads(threads));
   const TriangleMesh& mesh = index_->mesh();
@@ -49,6 +56,11 @@ ScanTarget::ScanTarget(ScanTarget&&) noexcept = default;
 const TriangleMesh& ScanTarget::mesh() const { return index_->mesh(); }
 
 const Points& ScanTarget::vertex_normals() const { return index_->vertex_normals(); }
+
+const std::vector<char>& ScanTarget::skin() const {
+  std::call_once(skin_->once, [this] { skin_->labels = skin_vertices(mesh()); });
+  return skin_->labels;
+}
 
 Points ScanTarget::sample_normals() const { return normal_sign_ * sample_normals_; }
 

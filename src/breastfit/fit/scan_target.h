@@ -56,9 +56,15 @@ class ScanTarget {
   /// of the scan, for the reverse term.
   const Points& sample_points() const { return samples_; }
   Points sample_normals() const;
+  /// Per scan vertex: 1 on the skin, else 0 (fit/skin_around.h skin_vertices(mesh())): computed on
+  /// first use and kept, so that the warm re-fits of a workstation session on the same target
+  /// label the scan's pieces once. Thread-safe.
+  const std::vector<char>& skin() const;
 
  private:
+  struct Skin;  // the labels and their once-flag
   std::unique_ptr<spatial::ClosestPointIndex> index_;  // owns the scan's copy
+  std::unique_ptr<Skin> skin_;
   Points samples_;
   Points sample_normals_;
   double normal_sign_ = 1.0;

@@ -18,6 +18,10 @@
 #include "breastfit/core/types.h"
 #include "breastfit/mesh/triangle_mesh.h"
 
+namespace breastfit::spatial {
+class ClosestPointIndex;
+}
+
 namespace breastfit::fit {
 
 /// A piece of the scan with fewer triangles than this share of the scan's is a fragment, not skin.
@@ -37,5 +41,12 @@ struct SkinPatch {
 /// order, with their rows of `scan_normals`.
 SkinPatch skin_around(const TriangleMesh& scan, const Points& scan_normals, const std::vector<char>& skin,
                       const Vec3& centre, double radius_mm);
+/// The same patch, bit for bit, on the scan `index` was built over (`skin` from skin_vertices of
+/// it), from the index's vertices within a hair more than the radius (ClosestPointIndex::vertices_within:
+/// the tree's boxes prune) instead of a pass over every scan vertex; the same test, the same order.
+/// A skin vertex lies on a triangle, so none is missed. \throws InvalidInput when `radius_mm` is
+/// negative or not finite.
+SkinPatch skin_around(const spatial::ClosestPointIndex& index, const Points& scan_normals,
+                      const std::vector<char>& skin, const Vec3& centre, double radius_mm);
 
 }  // namespace breastfit::fit
