@@ -14,20 +14,8 @@
 namespace breastfit::fit {
 namespace {
 
-// A breast (a sphere of radius 60 mm) and a fragment in front of it (< 1 % of the triangles).
-TriangleMesh breast_with_fragment() {
-  const TriangleMesh breast = test::sphere_mesh(60.0, Vec3::Zero(), 64, 128);
-  const TriangleMesh fragment = test::sphere_mesh(3.0, Vec3(0, -88, 0), 6, 12);
-  TriangleMesh m;
-  m.V.resize(breast.V.rows() + fragment.V.rows(), 3);
-  m.V << breast.V, fragment.V;
-  m.F.resize(breast.F.rows() + fragment.F.rows(), 3);
-  m.F << breast.F, (fragment.F.array() + breast.V.rows()).matrix();
-  return m;
-}
-
 TEST(ScanTarget, SkinIsTheScansSkinVerticesKeptOnce) {
-  const TriangleMesh scan = breast_with_fragment();
+  const TriangleMesh scan = test::breast_with_fragment();
   const std::vector<char> expected = skin_vertices(scan);
   ScanTarget target(scan, 100);
   const std::vector<char>& skin = target.skin();
@@ -42,7 +30,7 @@ TEST(ScanTarget, SkinIsTheScansSkinVerticesKeptOnce) {
 }
 
 TEST(ScanTarget, SkinIsLabelledOnceWhenTwoThreadsAskFirst) {
-  const TriangleMesh scan = breast_with_fragment();
+  const TriangleMesh scan = test::breast_with_fragment();
   const std::vector<char> expected = skin_vertices(scan);
   for (int round = 0; round < 5; ++round) {
     const ScanTarget target(scan, 100);

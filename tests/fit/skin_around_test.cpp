@@ -17,26 +17,10 @@
 namespace breastfit::fit {
 namespace {
 
-// `a` with `b`'s vertices and triangles appended (two pieces that share no vertex).
-TriangleMesh joined(const TriangleMesh& a, const TriangleMesh& b) {
-  TriangleMesh m;
-  m.V.resize(a.V.rows() + b.V.rows(), 3);
-  m.V << a.V, b.V;
-  m.F.resize(a.F.rows() + b.F.rows(), 3);
-  m.F << a.F, (b.F.array() + a.V.rows()).matrix();
-  return m;
-}
-
 const Vec3 kNipple(0, -60, 0);  // the front of a breast: a sphere of radius 60 mm
 
-// The breast and a fragment: a small sphere (radius 3 mm, 62 vertices, < 1 % of the triangles) 25 mm
-// in front of it, within the 35 mm the tip is searched.
-TriangleMesh breast_with_fragment() {
-  return joined(test::sphere_mesh(60.0, Vec3::Zero(), 64, 128), test::sphere_mesh(3.0, Vec3(0, -88, 0), 6, 12));
-}
-
 TEST(SkinAround, LeavesOutAFloatingFragmentInFrontOfTheBreast) {
-  const TriangleMesh scan = breast_with_fragment();
+  const TriangleMesh scan = test::breast_with_fragment();
   const Points N = mesh::vertex_normals(scan);
   // Over every vertex the fragment is the "tip", 25–31 mm from the nipple: a false flag at 18 mm.
   const auto everywhere = breast_tip_on_scan(scan.V, scan.V, N, kNipple);
@@ -94,8 +78,8 @@ TEST(SkinAround, AHoleNearTheNippleDoesNotCutTheSkinOffTheBreast) {
 
 TEST(SkinAround, APointCloudIsSkinEverywhere) {
   TriangleMesh cloud;
-  cloud.V = breast_with_fragment().V;
-  const Points N = mesh::vertex_normals(breast_with_fragment());
+  cloud.V = test::breast_with_fragment().V;
+  const Points N = mesh::vertex_normals(test::breast_with_fragment());
   const SkinPatch skin = skin_around(cloud, N, skin_vertices(cloud), kNipple, 40.0);
   Index near = 0;
   for (Index i = 0; i < cloud.V.rows(); ++i) near += (cloud.V.row(i).transpose() - kNipple).norm() < 40.0;
@@ -109,11 +93,11 @@ TEST(SkinAround, APointCloudIsSkinEverywhere) {
 // off the surface, with vertices exactly at the radius (not kept: the test is strict) and a few
 // ulps inside it.
 TEST(SkinAround, ThroughTheIndexIsThePassOverEveryVertex) {
-  TriangleMesh unused = breast_with_fragment();
+  TriangleMesh unused = test::breast_with_fragment();
   unused.V.conservativeResize(unused.V.rows() + 2, 3);
   unused.V.row(unused.V.rows() - 2) = kNipple.transpose();  // on the nipple, but on no triangle
   unused.V.row(unused.V.rows() - 1) << 0, -50, 0;
-  for (const TriangleMesh& scan : {breast_with_fragment(), sphere_with_hole_around_nipple(), unused}) {
+  for (const TriangleMesh& scan : {test::breast_with_fragment(), sphere_with_hole_around_nipple(), unused}) {
     const spatial::ClosestPointIndex index(scan);
     const Points N = mesh::vertex_normals(scan);
     const std::vector<char> skin = skin_vertices(scan);

@@ -61,4 +61,20 @@ inline TriangleMesh square_mesh(double h, double y0) {
   return m;
 }
 
+/// `a` with `b`'s vertices and triangles appended (two pieces that share no vertex).
+inline TriangleMesh joined_mesh(const TriangleMesh& a, const TriangleMesh& b) {
+  TriangleMesh m;
+  m.V.resize(a.V.rows() + b.V.rows(), 3);
+  m.V << a.V, b.V;
+  m.F.resize(a.F.rows() + b.F.rows(), 3);
+  m.F << a.F, (b.F.array() + a.V.rows()).matrix();
+  return m;
+}
+
+/// A breast (a sphere of radius 60 mm at the origin, its front at y = -60) and a floating fragment:
+/// a small sphere (radius 3 mm, < 1 % of the triangles) 25 mm in front of it.
+inline TriangleMesh breast_with_fragment() {
+  return joined_mesh(sphere_mesh(60.0, Vec3::Zero(), 64, 128), sphere_mesh(3.0, Vec3(0, -88, 0), 6, 12));
+}
+
 }  // namespace breastfit::test
