@@ -46,12 +46,21 @@ double receding(double h) {
   return 36.0 - (-230 - h) * 2.0;  // −34 at −265
 }
 
+// A breast hanging lower, to −292: in the slice at the fold's height (−285 ± 3) its front-most skin
+// is 25 mm behind the tip — beyond the first margin (23 mm), within today's (28): such sides of
+// generated torsos took the proportion's point on the breast's front.
+double hanging_lower(double h) {
+  if (h > -200 || h < -292) return kNone;
+  if (h >= -250) return 36.0 - (h + 250) * 0.3;
+  return 36.0 - (-250 - h) * (25.0 / 32.0);  // 11 at −282, 3.2 at −292
+}
+
 const Vec3 kTip(100, 36, -250);
 const Vec3 kFitted(100, -30, -285);
 
 TEST(HangingBreastFold, TheSliceAtTheFoldsHeightMeetsAHangingBreastOnly) {
   const SternumFrame f = test::unit_sternum_frame();
-  // Hanging: at −285 the front is 13.25, 22.75 behind the tip (< 23).
+  // Hanging: the slice −288…−282's front-most skin is 15.2 (at −282), 20.8 behind the tip (< 28).
   EXPECT_TRUE(breast_hangs_over_fold(torso(hanging), kTip, kFitted, f, -285.0));
   // Receding: at −285 only the chest wall, 76 behind the tip.
   EXPECT_FALSE(breast_hangs_over_fold(torso(receding), kTip, kFitted, f, -285.0));
@@ -61,6 +70,38 @@ TEST(HangingBreastFold, TheSliceAtTheFoldsHeightMeetsAHangingBreastOnly) {
   EXPECT_FALSE(breast_hangs_over_fold(torso(hanging), kTip, kFitted, f, -285.0, o));
   // No scan in the slice (the strip elsewhere across the body): not hanging.
   EXPECT_FALSE(breast_hangs_over_fold(torso(hanging), kTip, Vec3(300, -30, -285), f, -285.0));
+}
+
+TEST(HangingBreastFold, TheSliceAtTheFoldsHeightBehindTheTip) {
+  const SternumFrame f = test::unit_sternum_frame();
+  // The slice's front-most skin is its top row's (−282).
+  EXPECT_NEAR(*fold_slice_behind_tip_mm(torso(hanging), kTip, kFitted, f, -285.0), 32.0 * 0.65, 1e-9);
+  EXPECT_NEAR(*fold_slice_behind_tip_mm(torso(hanging_lower), kTip, kFitted, f, -285.0), 25.0, 1e-9);
+  EXPECT_NEAR(*fold_slice_behind_tip_mm(torso(receding), kTip, kFitted, f, -285.0), 76.0, 1e-9);
+  EXPECT_FALSE(fold_slice_behind_tip_mm(torso(hanging), kTip, Vec3(300, -30, -285), f, -285.0).has_value());
+}
+
+TEST(HangingBreastFold, TheLowestPointIfTheBreastHangs) {
+  const SternumFrame f = test::unit_sternum_frame();
+  // 25 mm behind the tip at the fold's height: it hangs, and its bottom is found (the last slice
+  // with breast −291: its rows −292…−290, front-most 36 − 40 × 25/32; then the chest wall).
+  const auto p = lowest_breast_if_hanging(torso(hanging_lower), kTip, kFitted, f, -285.0);
+  ASSERT_TRUE(p.has_value());
+  EXPECT_NEAR(p->z(), -291.0, 1e-9);
+  EXPECT_NEAR(p->y(), 0.5 * ((36.0 - 40.0 * 25.0 / 32.0) + -40.0), 1e-9);
+  // The same as the detector's own search where the breast hangs.
+  EXPECT_EQ(*lowest_breast_if_hanging(torso(hanging), kTip, kFitted, f, -285.0),
+            *hanging_breast_fold_on_scan(torso(hanging), kTip, kFitted, f, -285.0));
+  // A breast receding above the fold's height: no point (the caller's proportions place it).
+  EXPECT_FALSE(lowest_breast_if_hanging(torso(receding), kTip, kFitted, f, -285.0).has_value());
+  // Hanging at the fold's height but no fall within reach below: no point either.
+  HangingBreastFoldOptions o;
+  o.max_below_mm = 2.0;
+  EXPECT_FALSE(lowest_breast_if_hanging(torso(hanging_lower), kTip, kFitted, f, -285.0, o).has_value());
+  // The first margin (23 mm) did not count the lower breast as hanging.
+  o = HangingBreastFoldOptions{};
+  o.max_behind_tip_mm = 23.0;
+  EXPECT_FALSE(lowest_breast_if_hanging(torso(hanging_lower), kTip, kFitted, f, -285.0, o).has_value());
 }
 
 TEST(HangingBreastFold, TheBottomOfTheLowerPoleHalfwayToTheChestWall) {

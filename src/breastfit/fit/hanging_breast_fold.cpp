@@ -33,13 +33,20 @@ std::vector<SternumCoordinates> strip_of(const Points& S, const Vec3& tip, const
 
 }  // namespace
 
-bool breast_hangs_over_fold(const Points& scan_vertices, const Vec3& tip, const Vec3& fitted_lowest,
-                            const SternumFrame& frame, double height_mm, const HangingBreastFoldOptions& options) {
-  if (!(frame.length_mm > 0)) return false;
+std::optional<double> fold_slice_behind_tip_mm(const Points& scan_vertices, const Vec3& tip, const Vec3& fitted_lowest,
+                                               const SternumFrame& frame, double height_mm,
+                                               const HangingBreastFoldOptions& options) {
+  if (!(frame.length_mm > 0)) return std::nullopt;
   const auto strip = strip_of(scan_vertices, tip, fitted_lowest, frame, options);
   const double front = front_most(strip, height_mm, options.height_half_window_mm);
-  if (!std::isfinite(front)) return false;
-  return sternum_coordinates(frame, tip).front - front < options.max_behind_tip_mm;
+  if (!std::isfinite(front)) return std::nullopt;
+  return sternum_coordinates(frame, tip).front - front;
+}
+
+bool breast_hangs_over_fold(const Points& scan_vertices, const Vec3& tip, const Vec3& fitted_lowest,
+                            const SternumFrame& frame, double height_mm, const HangingBreastFoldOptions& options) {
+  const auto behind = fold_slice_behind_tip_mm(scan_vertices, tip, fitted_lowest, frame, height_mm, options);
+  return behind && *behind < options.max_behind_tip_mm;
 }
 
 std::optional<Vec3> hanging_breast_fold_on_scan(const Points& scan_vertices, const Vec3& tip, const Vec3& fitted_lowest,
@@ -64,6 +71,13 @@ std::optional<Vec3> hanging_breast_fold_on_scan(const Points& scan_vertices, con
     front = next;
   }
   return std::nullopt;
+}
+
+std::optional<Vec3> lowest_breast_if_hanging(const Points& scan_vertices, const Vec3& tip, const Vec3& fitted_lowest,
+                                             const SternumFrame& frame, double height_mm,
+                                             const HangingBreastFoldOptions& options) {
+  if (!breast_hangs_over_fold(scan_vertices, tip, fitted_lowest, frame, height_mm, options)) return std::nullopt;
+  return hanging_breast_fold_on_scan(scan_vertices, tip, fitted_lowest, frame, height_mm, options);
 }
 
 }  // namespace breastfit::fit

@@ -279,8 +279,8 @@ std::optional<Vec3> held_or_posed(const model::RiggedModel& model, const Points&
 
 // The lowest breast points not given, placed again once the shape is fitted: by proportions of
 // the held notch, the fitted xiphoid and the held nipples (breast_fold.h); each replaces the fold's
-// target in `held` when found. With a subset of the landmarks given (`under_hanging_breasts`), where
-// the breast hangs over the fold's height, at the bottom of its lower pole instead
+// target in `held` when found. With a subset of the landmarks given or none (`under_hanging_breasts`),
+// where the breast hangs over the fold's height, at the bottom of its lower pole instead
 // (hanging_breast_fold.h).
 void place_folds_by_proportion(const model::RiggedModel& model, const Points& V, const model::PoseParams& params,
                                const ScanTarget& scan, const std::vector<LandmarkTarget>& given,
@@ -299,13 +299,10 @@ void place_folds_by_proportion(const model::RiggedModel& model, const Points& V,
     const Vec3& tip = side == 'R' ? *right : *left;
     std::optional<Vec3> fold;
     const double height = -lowest_breast_drop_mm(*frame, -sternum_coordinates(*frame, tip).height);
-    if (under_hanging_breasts && breast_hangs_over_fold(scan.mesh().V, tip, fitted, *frame, height)) {
-      // The slice meets the hanging breast's front: the bottom of its lower pole (hanging_breast_fold.h),
-      // or the shape stage's target kept.
-      fold = hanging_breast_fold_on_scan(scan.mesh().V, tip, fitted, *frame, height);
-    } else {
-      fold = lowest_breast_by_proportion(scan.mesh().V, tip, fitted, *frame);
-    }
+    // Where the slice at that height meets a hanging breast's front (or holds no scan): the bottom
+    // of its lower pole (hanging_breast_fold.h); else, or when no fall is found, by proportions.
+    if (under_hanging_breasts) fold = lowest_breast_if_hanging(scan.mesh().V, tip, fitted, *frame, height);
+    if (!fold) fold = lowest_breast_by_proportion(scan.mesh().V, tip, fitted, *frame);
     if (!fold) continue;
     const LandmarkTarget target{name, *idx, *fold, landmark_weight(name)};
     const auto at = std::find_if(held.begin(), held.end(), [&](const LandmarkTarget& t) { return t.name == name; });
@@ -957,7 +954,7 @@ FitResult register_template(const model::RiggedModel& model, ScanTarget& scan, s
           const size_t before = held.size();
           if (subset) place_xiphoid_by_nipples(model, shaped, params, landmarks, held);
           if (hold_folds)
-            place_folds_by_proportion(model, shaped, params, scan, landmarks, held, subset);
+            place_folds_by_proportion(model, shaped, params, scan, landmarks, held, subset || landmarks.empty());
           if (hold_shoulders)
             for (auto& t : shoulder_targets(model, shaped, params, scan, held, summary.orientation.arm_pose))
               held.push_back(t);
