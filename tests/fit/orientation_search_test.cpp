@@ -4,9 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <map>
 
 #include <Eigen/Geometry>
+#include <nlohmann/json.hpp>
 
 #include "breastfit/fit/scan_target.h"
 #include "breastfit/synth/synth_case.h"
@@ -78,6 +80,25 @@ TEST(OrientationSearch, FindsASupineTorsoTurnedAnyWay) {
     OrientationSearch s;
     EXPECT_LT(placement_error_deg(synth::PoseType::Supine, turn, &s), 20.0) << turn.what;
     EXPECT_EQ(s.arm_pose, "arms abducted (supine, arm boards)") << turn.what;
+  }
+}
+
+// The arms' abduction the search reports (from the vertical) against the one the synthetic subject was
+// drawn with: each arm raised, not lowered, onto the arm boards. Until session 23 the search turned
+// each arm the wrong way ("raised" 40° was lowered 40°), so every supine scan got its arms at the
+// search's end, −16°, and the pose stage had to lift them from there; where a fragment of scan lay
+// beside the chest, an arm stayed down.
+TEST(OrientationSearch, ReportsTheArmsRaisedAsTheSubjectsWere) {
+  for (const auto pose : {synth::PoseType::Standing, synth::PoseType::Supine}) {
+    OrientationSearch s;
+    placement_error_deg(pose, kTurns[0], &s);
+    const auto arms = nlohmann::json::parse(body_frame_case(pose).meta_json)["pose"]["arms"];
+    for (int k = 0; k < 2; ++k) {
+      const double drawn = arms[k == 0 ? "R" : "L"]["abduction_deg"].get<double>();
+      EXPECT_LT(std::abs(s.arm_abduction_deg[k] - drawn), 25.0)
+          << (pose == synth::PoseType::Supine ? "supine" : "standing") << (k == 0 ? " right" : " left")
+          << " arm: found " << s.arm_abduction_deg[k] << ", drawn " << drawn;
+    }
   }
 }
 

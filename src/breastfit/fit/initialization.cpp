@@ -136,8 +136,9 @@ std::array<double, 2> initialize_arms(const model::RiggedModel& model, const Sca
       }
     }
     const Quat base = params.bones[*bone].rotation;
-    // Positive angles raise the arm: about +y (posterior) for the left arm, −y for the right.
-    const double sign = std::string(name).back() == 'L' ? 1.0 : -1.0;
+    // Positive angles raise the arm: about −y for the left arm (the template's x points to the
+    // left, z up: a turn about +y takes +x towards −z, down), about +y for the right.
+    const double sign = std::string(name).back() == 'L' ? -1.0 : 1.0;
     std::vector<Quat> rotations;
     for (int deg : angles_deg)
       rotations.push_back(Quat(Eigen::AngleAxisd(sign * deg * M_PI / 180.0, Vec3::UnitY())) * base);

@@ -313,16 +313,17 @@ void place_folds_by_proportion(const model::RiggedModel& model, const Points& V,
   }
 }
 
-// A subset of the landmarks given with the notch and both nipples but not the xiphoid: the xiphoid
-// held at the sternum's length the given three predict, along the shaped model's sternum
-// (sternum_length.h); the folds' and the shoulder's proportions are then taken from it. Appended
-// to `held` when placed.
+// The notch and both nipples in `from` but no xiphoid held: the xiphoid held at the sternum's length
+// those three predict, along the shaped model's sternum (sternum_length.h); the folds' and the
+// shoulder's proportions are then taken from it. Appended to `held` when placed. `from` is the given
+// landmarks when a subset is given, and `held` itself without landmarks (the jugular notch and the
+// breasts' tips found on the scan).
 void place_xiphoid_by_nipples(const model::RiggedModel& model, const Points& V, const model::PoseParams& params,
-                              const std::vector<LandmarkTarget>& given, std::vector<LandmarkTarget>& held) {
+                              const std::vector<LandmarkTarget>& from, std::vector<LandmarkTarget>& held) {
   const auto idx = model.landmark_index("xiphoid");
-  const LandmarkTarget* notch = find_landmark(given, "sternal_notch");
-  const LandmarkTarget* right = find_landmark(given, "nipple_R");
-  const LandmarkTarget* left = find_landmark(given, "nipple_L");
+  const LandmarkTarget* notch = find_landmark(from, "sternal_notch");
+  const LandmarkTarget* right = find_landmark(from, "nipple_R");
+  const LandmarkTarget* left = find_landmark(from, "nipple_L");
   if (!idx || !notch || !right || !left || is_given(held, "xiphoid")) return;
   const Vec3 fitted = model_landmark_position(model, *idx, V, params);
   if (const auto placed = xiphoid_by_nipples(notch->position, right->position, left->position, fitted))
@@ -953,6 +954,7 @@ FitResult register_template(const model::RiggedModel& model, ScanTarget& scan, s
           const Points& shaped = problem_ptr->evaluator().vertices();
           const size_t before = held.size();
           if (subset) place_xiphoid_by_nipples(model, shaped, params, landmarks, held);
+          if (landmarks.empty()) place_xiphoid_by_nipples(model, shaped, params, held, held);
           if (hold_folds)
             place_folds_by_proportion(model, shaped, params, scan, landmarks, held, subset || landmarks.empty());
           if (hold_shoulders)
