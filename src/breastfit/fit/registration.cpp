@@ -299,8 +299,8 @@ void place_folds_by_proportion(const model::RiggedModel& model, const Points& V,
     const Vec3& tip = side == 'R' ? *right : *left;
     std::optional<Vec3> fold;
     const double height = -lowest_breast_drop_mm(*frame, -sternum_coordinates(*frame, tip).height);
-    // Where the slice at that height meets a hanging breast's front (or holds no scan): the bottom
-    // of its lower pole (hanging_breast_fold.h); else, or when no fall is found, by proportions.
+    // Where the slice at that height meets a hanging breast's front: the bottom of its lower pole
+    // (hanging_breast_fold.h); else, or when no fall is found below it, by proportions.
     if (under_hanging_breasts) fold = lowest_breast_if_hanging(scan.mesh().V, tip, fitted, *frame, height);
     if (!fold) fold = lowest_breast_by_proportion(scan.mesh().V, tip, fitted, *frame);
     if (!fold) continue;
