@@ -125,25 +125,6 @@ void BM_QueryHinted100k(benchmark::State& state) {
 }
 BENCHMARK(BM_QueryHinted100k)->Unit(benchmark::kMillisecond);
 
-/// The same warm-started queries with what each one mostly reads fetched ahead, as the fit's
-/// correspondence searches do (the nodes above the hint's leaf 8 queries ahead, the leaves beside
-/// it 4 ahead): the same answers, compare with BM_QueryHinted100k.
-void BM_QueryHintedPrefetched100k(benchmark::State& state) {
-  const Fixture& fx = fixture();
-  const ClosestPointIndex index(fx.mesh);
-  for (auto _ : state) {
-    double sum = 0.0;
-    for (Index i = 0; i < kNumQueries; ++i) {
-      if (i + 8 < kNumQueries) index.prefetch_nodes_near(fx.hint[i + 8]);
-      if (i + 4 < kNumQueries) index.prefetch_leaves_near(fx.hint[i + 4]);
-      sum += index.closest(fx.queries.row(i).transpose(), fx.hint[i]).sq_dist;
-    }
-    benchmark::DoNotOptimize(sum);
-  }
-  state.SetItemsProcessed(state.iterations() * kNumQueries);
-}
-BENCHMARK(BM_QueryHintedPrefetched100k)->Unit(benchmark::kMillisecond);
-
 /// The same queries on the mesh rounded to float, as scans stored in float PLY files are: the
 /// index then keeps the leaves' corners as floats (exact, half the bytes).
 const ClosestPointIndex& float_mesh_index() {

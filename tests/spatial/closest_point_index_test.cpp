@@ -277,28 +277,6 @@ TEST(ClosestPointIndex, HintsAndBatchGiveIdenticalResults) {
   EXPECT_TRUE(index.closest_batch(Points(0, 3)).empty());
 }
 
-TEST(ClosestPointIndex, FetchingAheadChangesNoAnswer) {
-  const TriangleMesh m = meshes::noisy_sheet(40, 2.5, 0.8, 0.15, 4);
-  const ClosestPointIndex index(m);
-  const std::vector<Vec3> qs = queries(m, 500, 5.0, 2.0, 17);
-  std::vector<ClosestPoint> before;
-  for (const Vec3& q : qs) before.push_back(index.closest(q));
-  for (const Index f : {Index{-1}, Index{-7}, m.num_faces(), m.num_faces() + 5}) {  // ignored
-    index.prefetch_nodes_near(f);
-    index.prefetch_leaves_near(f);
-  }
-  Rng rng(18);
-  for (std::size_t i = 0; i < qs.size(); ++i) {
-    const auto ahead = static_cast<Index>(rng.below(static_cast<std::uint64_t>(m.num_faces())));
-    index.prefetch_nodes_near(ahead);
-    index.prefetch_leaves_near(ahead);
-    const ClosestPoint cp = index.closest(qs[i], before[i].face);
-    EXPECT_EQ(cp.face, before[i].face);
-    EXPECT_EQ(cp.sq_dist, before[i].sq_dist);
-    EXPECT_EQ(cp.point, before[i].point);
-  }
-}
-
 TEST(ClosestPointIndex, QueryOrderIsAPermutationAlongAZCurve) {
   // Points on a 16×16 grid in the plane z = 0, given row by row: the Z curve visits each 2×2
   // block of cells before the next, so consecutive queries are neighbours far more often.

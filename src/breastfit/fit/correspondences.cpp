@@ -1,6 +1,5 @@
 #include "breastfit/fit/correspondences.h"
 
-#include <algorithm>
 #include <cmath>
 #include <utility>
 
@@ -80,24 +79,18 @@ std::vector<Correspondence> find_correspondences(const Points& V, const Points& 
   // Each search starts from its hint's triangle and ends reading the found one's corners and
   // their normals (mostly the hint's): on a large scan these are cache misses one after another.
   // They are fetched a few queries ahead — the triangle's corner indices kPrefetchAhead queries
-  // ahead, its corners and their normals half as far (the indices are there by then). So are the
-  // index's nodes above the hint's leaf (twice as far) and the leaves beside it (kPrefetchAhead:
-  // their node is there by then), where the descent mostly ends. Only the speed depends on it.
+  // ahead, its corners and their normals half as far (the indices are there by then). Only the
+  // speed depends on it.
   const Points& SV = scan.mesh().V;
   const Triangles& SF = scan.mesh().F;
   const Points& SN = scan.vertex_normals();
-  const spatial::ClosestPointIndex& index = scan.index();
   const auto hint_of = [&](Index j) -> Index {
     const Index h = (*hints)[static_cast<size_t>(order[static_cast<size_t>(j)]) * static_cast<size_t>(stride)];
     return h >= 0 && h < SF.rows() ? h : -1;
   };
   for_each_chunk(candidates, kQueryChunk, threads, [&](Index, Index begin, Index end) {
-    if (hints)  // the chunk's first queries: their nodes now (the loop fetches from 2 · kPrefetchAhead on)
-      for (Index j = begin; j < std::min(end, begin + 2 * kPrefetchAhead); ++j) index.prefetch_nodes_near(hint_of(j));
     for (Index j = begin; j < end; ++j) {
       if (hints) {
-        if (j + 2 * kPrefetchAhead < end) index.prefetch_nodes_near(hint_of(j + 2 * kPrefetchAhead));
-        if (j + kPrefetchAhead < end) index.prefetch_leaves_near(hint_of(j + kPrefetchAhead));
         if (j + kPrefetchAhead < end)
           if (const Index h = hint_of(j + kPrefetchAhead); h >= 0) __builtin_prefetch(SF.data() + 3 * h);
         if (j + kPrefetchAhead / 2 < end)

@@ -15,7 +15,6 @@
 #include "breastfit/mesh/normals.h"
 #include "breastfit/spatial/detail/bvh.h"
 #include "breastfit/spatial/detail/bvh4.h"
-#include "breastfit/spatial/detail/bvh4_parents.h"
 #include "breastfit/spatial/detail/leaf_blocks.h"
 #include "breastfit/spatial/detail/parallel_for.h"
 #include "breastfit/spatial/detail/point_triangle_kernel.h"
@@ -25,9 +24,6 @@ namespace breastfit::spatial {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-
-/// How many nodes above a face's leaf ClosestPointIndex::prefetch_nodes_near() fetches at most.
-constexpr int kPrefetchLevels = 64;
 
 using detail::kLeafHeaderBytes;
 using detail::kMaxLeafSize;
@@ -86,7 +82,6 @@ struct ClosestPointIndex::Impl {
   // slot's ref is ~(first line of its block), its count the block's lines).
   detail::Bvh4Nodes wide;
   detail::LeafBlocks blocks;  // see detail/leaf_blocks.h
-  detail::Bvh4Parents parents;  // where each face's leaf and each node hang (the prefetches)
   std::vector<std::uint8_t> face_flags;    // by face: detail::kFlag*
   std::vector<std::uint8_t> vertex_boundary;  // by vertex: 1 on an open-boundary edge
   Points vertex_normals;                   // #V by 3 area-weighted unit normals (or zero)
@@ -119,7 +114,6 @@ struct ClosestPointIndex::Impl {
     detail::fit_inner_boxes(nodes);
     wide = detail::collapse_to_bvh4(nodes);
     detail::BvhNodes().swap(nodes);  // not needed for queries
-    parents = detail::bvh4_parents(wide, blocks, mesh.num_faces());
   }
 
   const double* vertex(Index face, int corner) const {
@@ -423,30 +417,6 @@ void ClosestPointIndex::vertices_within(const Vec3& q, double radius, std::vecto
   for (std::size_t w = 0; w < seen.size(); ++w)
     for (std::uint64_t bits = seen[w]; bits != 0; bits &= bits - 1)
       out.push_back(static_cast<Index>(64 * w + static_cast<std::size_t>(__builtin_ctzll(bits))));
-}
-
-void ClosestPointIndex::prefetch_nodes_near(Index face) const {
-  if (face < 0 || face >= impl_->mesh.num_faces()) return;
-  const auto& p = impl_->parents;
-  std::int32_t n = p.face_node[static_cast<std::size_t>(face)];
-  for (int level = 0; level < kPrefetchLevels && n >= 0; ++level) {
-    const auto* line = reinterpret_cast<const unsigned char*>(impl_->wide.data() + n);
-    __builtin_prefetch(line);
-    __builtin_prefetch(line + 64);
-    n = p.node_parent[static_cast<std::size_t>(n)];
-  }
-}
-
-void ClosestPointIndex::prefetch_leaves_near(Index face) const {
-  if (face < 0 || face >= impl_->mesh.num_faces()) return;
-  const std::int32_t n = impl_->parents.face_node[static_cast<std::size_t>(face)];
-  if (n < 0) return;
-  const detail::Bvh4Node& node = impl_->wide[static_cast<std::size_t>(n)];
-  for (int s = 0; s < 4 && node.ref[s] != detail::kBvh4Empty; ++s) {
-    if (node.ref[s] >= 0) continue;
-    const unsigned char* block = impl_->blocks[static_cast<std::size_t>(~node.ref[s])].bytes;
-    for (std::int32_t l = 0; l < node.count[s]; ++l) __builtin_prefetch(block + 64 * l);
-  }
 }
 
 Vec3 ClosestPointIndex::face_normal(Index face) const {

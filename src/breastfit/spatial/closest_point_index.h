@@ -63,16 +63,6 @@ class ClosestPointIndex {
   /// \throws InvalidInput when q is not finite or radius is negative or not finite.
   void vertices_within(const Vec3& q, double radius, std::vector<Index>& out) const;
 
-  /// Start fetching into the cache what a search warm-started from `face` mostly reads (a search
-  /// near a face ends in the leaf holding it or beside it): prefetch_nodes_near() the tree nodes
-  /// above that leaf, prefetch_leaves_near() the leaf blocks of the
-  /// node holding it — which reads that node, so ask for it a few queries after the nodes. For
-  /// callers running many warm-started searches in turn (the fit's correspondences): one search's
-  /// misses are then fetched while the ones before it run. Only the speed changes; an
-  /// out-of-range face is ignored. Addition, backwards compatible.
-  void prefetch_nodes_near(Index face) const;
-  void prefetch_leaves_near(Index face) const;
-
   /// Unit face normal of a triangle (zero for degenerate triangles).
   Vec3 face_normal(Index face) const;
   /// Area-weighted vertex normal interpolated at a closest point (smooth normal).
