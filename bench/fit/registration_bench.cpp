@@ -1,7 +1,7 @@
 // Benchmarks of the registration's parts and of a whole fit, on a synthetic case made from the
 // shipped default template (no external data): scan index build, correspondences, the arm search
-// of the initialisation, normal equations assembly (with and without the blendshapes), one LM
-// iteration, posing the template, the placed landmarks' leave-one-out predictions, the surface-detail layer, and the full registration (what report.json's time_s
+// of the initialisation, normal equations assembly (with and without the blendshapes), one damped
+// LM step's solve, one LM iteration, posing the template, the placed landmarks' leave-one-out predictions, the surface-detail layer, and the full registration (what report.json's time_s
 // measures); the parallel parts with 1 and 2 threads (the last argument).
 #include <benchmark/benchmark.h>
 
@@ -14,6 +14,7 @@
 #include "breastfit/fit/surface_detail.h"
 #include "breastfit/fit/initialization.h"
 #include "breastfit/fit/landmark_prediction.h"
+#include "breastfit/fit/lm_strategy.h"
 #include "breastfit/mesh/landmarks.h"
 #include "breastfit/model/pose_evaluator.h"
 #include "breastfit/model/template_library.h"
@@ -172,6 +173,25 @@ void BM_LeaveOneOutPredictions(benchmark::State& state) {
   state.counters["landmarks"] = static_cast<double>(f.targets.size());
 }
 BENCHMARK(BM_LeaveOneOutPredictions)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
+
+// One damped Levenberg–Marquardt step (LevenbergMarquardtStrategy::compute_step: damping, the
+// LDLT factorisation, the solve) on the normal equations of every parameter (the shape and refine
+// stages' system), as each tried step of a stage solves it.
+void BM_LmStep(benchmark::State& state) {
+  auto& f = fixture();
+  const fit::FitOptions options = with_threads(f.options, 1);
+  const auto problem = f.problem(options);
+  problem->update_correspondences(20.0, 1, true);
+  fit::NormalEquations eq(problem->evaluator().layout().num_params());
+  eq.clear();
+  problem->evaluate(&eq);
+  eq.finalize();
+  const Eigen::MatrixXd H = eq.H();
+  fit::LevenbergMarquardtStrategy lm(options.solver);
+  for (auto _ : state) benchmark::DoNotOptimize(lm.compute_step(H, eq.g()).x.data());
+  state.counters["params"] = static_cast<double>(H.rows());
+}
+BENCHMARK(BM_LmStep)->Unit(benchmark::kMicrosecond);
 
 void BM_OneLmIteration(benchmark::State& state) {
   auto& f = fixture();

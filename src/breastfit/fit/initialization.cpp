@@ -111,6 +111,9 @@ std::array<double, 2> initialize_arms(const model::RiggedModel& model, const Sca
                                       model::PoseParams& params, bool two_way, int threads) {
   constexpr double kMissMm = 40.0;  // score of a vertex with nothing on the scan within this distance
   std::array<double, 2> raised{0.0, 0.0};
+  // Poses only the vertices an angle's score reads (pose_rows: the bits set_params gives them),
+  // shared by the chunks (pose_rows does not change it).
+  const model::PoseEvaluator evaluator(model);
   std::vector<int> angles_deg;
   for (int deg = -40; deg <= 90; deg += 10) angles_deg.push_back(deg);
   for (const char* name : {"upper_arm_R", "upper_arm_L"}) {
@@ -143,13 +146,14 @@ std::array<double, 2> initialize_arms(const model::RiggedModel& model, const Sca
     for (int deg : angles_deg)
       rotations.push_back(Quat(Eigen::AngleAxisd(sign * deg * M_PI / 180.0, Vec3::UnitY())) * base);
     // Every angle scored on its own, the best chosen in order. The angles run in chunks (in
-    // parallel) of kAnglesPerChunk: one pose evaluator per chunk (its construction costs more
-    // than posing), and each search warm-started from the vertex's face at the chunk's previous
-    // angle (the same answers; only faster).
+    // parallel) of kAnglesPerChunk, each search warm-started from the vertex's face at the chunk's
+    // previous angle (the same answers; only faster). An angle reads every second arm vertex.
     constexpr Index kAnglesPerChunk = 7;
+    std::vector<Index> read;
+    for (size_t k = 0; k < arm.size(); k += 2) read.push_back(arm[k]);
     std::vector<double> scores(rotations.size(), 0.0);
     for_each_chunk(static_cast<Index>(rotations.size()), kAnglesPerChunk, threads, [&](Index, Index begin, Index end) {
-      model::PoseEvaluator evaluator(model);
+      Points V(model.num_vertices(), 3);  // the rows of `read` posed at each angle
       model::PoseParams trial = params;
       std::vector<Index> hints(arm.size(), -1);
       // The searched vertices (every second one of the arm), searched along a Morton curve over
@@ -160,8 +164,7 @@ std::array<double, 2> initialize_arms(const model::RiggedModel& model, const Sca
       std::vector<double> distance(searched);
       for (Index a = begin; a < end; ++a) {
         trial.bones[*bone].rotation = rotations[static_cast<size_t>(a)];
-        evaluator.set_params(trial);
-        const Points& V = evaluator.vertices();
+        evaluator.pose_rows(trial, read, V);
         for (size_t s = 0; s < searched; ++s) Q.row(static_cast<Index>(s)) = V.row(arm[2 * s]);
         for (const std::uint32_t s : spatial::query_order(Q)) {
           const auto m = scan.match(Q.row(static_cast<Index>(s)).transpose(), kMissMm, &hints[2 * s]);

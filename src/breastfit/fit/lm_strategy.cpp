@@ -21,7 +21,7 @@ LmStep LevenbergMarquardtStrategy::compute_step(const Eigen::MatrixXd& H, const 
   damped_ = H;
   // Marquardt's scaling by diag(H), floored so that parameters no row touches stay regular.
   for (Eigen::Index r = 0; r < n; ++r) damped_(r, r) += mu_ * std::max(H(r, r), 1e-9) + 1e-12;
-  Eigen::LDLT<Eigen::MatrixXd> ldlt(damped_);
+  Eigen::LDLT<Eigen::Ref<Eigen::MatrixXd>> ldlt(damped_);  // in place: factorised where it was damped (no copy)
   step.x = ldlt.solve(-g);
   if (ldlt.info() != Eigen::Success || !step.x.allFinite()) {
     step_rejected();
