@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <functional>
+#include <vector>
 
 #include "breastfit/core/errors.h"
 #include "support/toy_model.h"
@@ -42,6 +43,21 @@ TEST(RiggedModel, NameLookups) {
   EXPECT_EQ(m.drawing_index("breast_contour_R"), 1);
   EXPECT_EQ(m.region_index("breast_R"), 0);
   EXPECT_EQ(m.region_index("breast_L"), std::nullopt);
+}
+
+// The vertices a bone mostly moves: exactly those whose weight on it is above the threshold, ascending.
+TEST(RiggedModel, VerticesMostlyMovedByABone) {
+  const RiggedModel m = test::make_toy_model();
+  for (int bone = 0; bone < m.num_bones(); ++bone)
+    for (const double min_weight : {0.6, 0.3}) {
+      std::vector<Index> expected;
+      for (Index i = 0; i < m.num_vertices(); ++i)
+        if (m.weights.coeff(i, bone) > min_weight) expected.push_back(i);
+      EXPECT_EQ(m.vertices_mostly_moved_by(bone, min_weight), expected) << "bone " << bone << " above " << min_weight;
+    }
+  const int chest = *m.bone_index("chest");
+  EXPECT_FALSE(m.vertices_mostly_moved_by(chest).empty());
+  EXPECT_LE(m.vertices_mostly_moved_by(chest).size(), m.vertices_mostly_moved_by(chest, 0.3).size());
 }
 
 void expect_invalid(const std::function<void(RiggedModel&)>& corrupt, const std::string& fragment) {

@@ -31,37 +31,27 @@ std::vector<SternumCoordinates> strip_of(const Points& S, const Vec3& tip, const
   return out;
 }
 
-}  // namespace
-
-std::optional<double> fold_slice_behind_tip_mm(const Points& scan_vertices, const Vec3& tip, const Vec3& fitted_lowest,
-                                               const SternumFrame& frame, double height_mm,
-                                               const HangingBreastFoldOptions& options) {
-  if (!(frame.length_mm > 0)) return std::nullopt;
-  const auto strip = strip_of(scan_vertices, tip, fitted_lowest, frame, options);
-  const double front = front_most(strip, height_mm, options.height_half_window_mm);
+// The slice at `height_mm`: how far its front-most strip vertex lies behind the tip; nullopt when empty.
+std::optional<double> behind_tip_in(const std::vector<SternumCoordinates>& strip, const Vec3& tip,
+                                    const SternumFrame& frame, double height_mm, const HangingBreastFoldOptions& o) {
+  const double front = front_most(strip, height_mm, o.height_half_window_mm);
   if (!std::isfinite(front)) return std::nullopt;
   return sternum_coordinates(frame, tip).front - front;
 }
 
-bool breast_hangs_over_fold(const Points& scan_vertices, const Vec3& tip, const Vec3& fitted_lowest,
-                            const SternumFrame& frame, double height_mm, const HangingBreastFoldOptions& options) {
-  const auto behind = fold_slice_behind_tip_mm(scan_vertices, tip, fitted_lowest, frame, height_mm, options);
-  return behind && *behind < options.max_behind_tip_mm;
-}
-
-std::optional<Vec3> hanging_breast_fold_on_scan(const Points& scan_vertices, const Vec3& tip, const Vec3& fitted_lowest,
-                                                const SternumFrame& frame, double height_mm,
-                                                const HangingBreastFoldOptions& options) {
-  if (!(frame.length_mm > 0) || !(options.bin_mm > 0)) return std::nullopt;
-  const auto strip = strip_of(scan_vertices, tip, fitted_lowest, frame, options);
+// hanging_breast_fold_on_scan on the strip already cut.
+std::optional<Vec3> bottom_of_lower_pole_in(const std::vector<SternumCoordinates>& strip, const Vec3& fitted_lowest,
+                                            const SternumFrame& frame, double height_mm,
+                                            const HangingBreastFoldOptions& o) {
+  if (!(o.bin_mm > 0)) return std::nullopt;
   double h = height_mm;
-  double front = front_most(strip, h, options.height_half_window_mm);
+  double front = front_most(strip, h, o.height_half_window_mm);
   if (!std::isfinite(front)) return std::nullopt;
-  for (double below = options.bin_mm; below <= options.max_below_mm + 1e-9; below += options.bin_mm) {
+  for (double below = o.bin_mm; below <= o.max_below_mm + 1e-9; below += o.bin_mm) {
     const double next_h = height_mm - below;
-    const double next = front_most(strip, next_h, 0.5 * options.bin_mm);
+    const double next = front_most(strip, next_h, 0.5 * o.bin_mm);
     if (!std::isfinite(next)) continue;  // an empty slice (a hole): the next one decides
-    if (front - next > options.min_fall_mm) {
+    if (front - next > o.min_fall_mm) {
       const double lateral = sternum_coordinates(frame, fitted_lowest).lateral;
       const Vec3 p = frame.notch + h * frame.up + 0.5 * (front + next) * frame.front + lateral * frame.lateral;
       if (!p.allFinite()) return std::nullopt;
@@ -73,11 +63,38 @@ std::optional<Vec3> hanging_breast_fold_on_scan(const Points& scan_vertices, con
   return std::nullopt;
 }
 
+}  // namespace
+
+std::optional<double> fold_slice_behind_tip_mm(const Points& scan_vertices, const Vec3& tip, const Vec3& fitted_lowest,
+                                               const SternumFrame& frame, double height_mm,
+                                               const HangingBreastFoldOptions& options) {
+  if (!(frame.length_mm > 0)) return std::nullopt;
+  return behind_tip_in(strip_of(scan_vertices, tip, fitted_lowest, frame, options), tip, frame, height_mm, options);
+}
+
+bool breast_hangs_over_fold(const Points& scan_vertices, const Vec3& tip, const Vec3& fitted_lowest,
+                            const SternumFrame& frame, double height_mm, const HangingBreastFoldOptions& options) {
+  const auto behind = fold_slice_behind_tip_mm(scan_vertices, tip, fitted_lowest, frame, height_mm, options);
+  return behind && *behind < options.max_behind_tip_mm;
+}
+
+std::optional<Vec3> hanging_breast_fold_on_scan(const Points& scan_vertices, const Vec3& tip, const Vec3& fitted_lowest,
+                                                const SternumFrame& frame, double height_mm,
+                                                const HangingBreastFoldOptions& options) {
+  if (!(frame.length_mm > 0)) return std::nullopt;
+  return bottom_of_lower_pole_in(strip_of(scan_vertices, tip, fitted_lowest, frame, options), fitted_lowest, frame,
+                                 height_mm, options);
+}
+
 std::optional<Vec3> lowest_breast_if_hanging(const Points& scan_vertices, const Vec3& tip, const Vec3& fitted_lowest,
                                              const SternumFrame& frame, double height_mm,
                                              const HangingBreastFoldOptions& options) {
-  if (!breast_hangs_over_fold(scan_vertices, tip, fitted_lowest, frame, height_mm, options)) return std::nullopt;
-  return hanging_breast_fold_on_scan(scan_vertices, tip, fitted_lowest, frame, height_mm, options);
+  if (!(frame.length_mm > 0)) return std::nullopt;
+  // One strip for both: whether the breast hangs, and where its lower pole ends.
+  const auto strip = strip_of(scan_vertices, tip, fitted_lowest, frame, options);
+  const auto behind = behind_tip_in(strip, tip, frame, height_mm, options);
+  if (!behind || !(*behind < options.max_behind_tip_mm)) return std::nullopt;
+  return bottom_of_lower_pole_in(strip, fitted_lowest, frame, height_mm, options);
 }
 
 }  // namespace breastfit::fit

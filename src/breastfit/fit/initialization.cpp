@@ -119,11 +119,7 @@ std::array<double, 2> initialize_arms(const model::RiggedModel& model, const Sca
   for (const char* name : {"upper_arm_R", "upper_arm_L"}) {
     const auto bone = model.bone_index(name);
     if (!bone) continue;
-    // The vertices this bone mostly moves.
-    std::vector<Index> arm;
-    for (Index i = 0; i < model.weights.outerSize(); ++i)
-      for (model::SkinWeights::InnerIterator it(model.weights, i); it; ++it)
-        if (it.col() == *bone && it.value() > 0.6) arm.push_back(i);
+    const std::vector<Index> arm = model.vertices_mostly_moved_by(*bone);
     if (arm.size() < 10) continue;
     // Two-way: the scan's samples beyond this shoulder (body frame: lateral of the joint, not far
     // below it) must lie near the arm too, so that an arm lowered onto the chest wall, which lies

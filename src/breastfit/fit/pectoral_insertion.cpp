@@ -74,16 +74,10 @@ std::optional<Vec3> pectoral_insertion_on_scan(const Points& scan_vertices, cons
 
 namespace {
 
-// The vertices the upper arm's bone of `side` mostly moves (weight above 0.6), ascending; empty
-// without the bone.
+// The vertices the upper arm's bone of `side` mostly moves, ascending; empty without the bone.
 std::vector<Index> arm_vertices(const model::RiggedModel& model, const std::string& side) {
-  std::vector<Index> arm;
   const auto bone = model.bone_index("upper_arm_" + side);
-  if (!bone) return arm;
-  for (Index i = 0; i < model.weights.outerSize(); ++i)
-    for (model::SkinWeights::InnerIterator it(model.weights, i); it; ++it)
-      if (it.col() == *bone && it.value() > 0.6) arm.push_back(i);
-  return arm;
+  return bone ? model.vertices_mostly_moved_by(*bone) : std::vector<Index>{};
 }
 
 }  // namespace

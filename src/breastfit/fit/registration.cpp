@@ -953,10 +953,11 @@ FitResult register_template(const model::RiggedModel& model, ScanTarget& scan, s
           problem_ptr->evaluator().set_params(params);
           const Points& shaped = problem_ptr->evaluator().vertices();
           const size_t before = held.size();
-          if (subset) place_xiphoid_by_nipples(model, shaped, params, landmarks, held);
-          if (landmarks.empty()) place_xiphoid_by_nipples(model, shaped, params, held, held);
-          if (hold_folds)
-            place_folds_by_proportion(model, shaped, params, scan, landmarks, held, subset || landmarks.empty());
+          // A subset given or none: the xiphoid by the sternum's length (from the given notch and
+          // nipples, or the ones held on the scan), and the folds under hanging breasts.
+          const bool by_proportions = subset || landmarks.empty();
+          if (by_proportions) place_xiphoid_by_nipples(model, shaped, params, subset ? landmarks : held, held);
+          if (hold_folds) place_folds_by_proportion(model, shaped, params, scan, landmarks, held, by_proportions);
           if (hold_shoulders)
             for (auto& t : shoulder_targets(model, shaped, params, scan, held, summary.orientation.arm_pose))
               held.push_back(t);

@@ -52,6 +52,14 @@ std::optional<int> RiggedModel::landmark_index(const std::string& n) const { ret
 std::optional<int> RiggedModel::drawing_index(const std::string& n) const { return find_by_name(drawings, n); }
 std::optional<int> RiggedModel::region_index(const std::string& n) const { return find_by_name(regions, n); }
 
+std::vector<Index> RiggedModel::vertices_mostly_moved_by(int bone, double min_weight) const {
+  std::vector<Index> out;
+  for (Index i = 0; i < weights.outerSize(); ++i)
+    for (SkinWeights::InnerIterator it(weights, i); it; ++it)
+      if (it.col() == bone && it.value() > min_weight) out.push_back(i);
+  return out;
+}
+
 void RiggedModel::validate() const {
   const Index nv = num_vertices();
   const Index nf = rest.num_faces();

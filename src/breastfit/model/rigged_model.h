@@ -79,6 +79,10 @@ struct RiggedModel {
   std::optional<int> drawing_index(const std::string& name) const;
   std::optional<int> region_index(const std::string& name) const;
 
+  /// The vertices `bone` mostly moves: skin weight above `min_weight` (0.6: the upper arm's own
+  /// vertices, not the shoulder's blend), ascending.
+  std::vector<Index> vertices_mostly_moved_by(int bone, double min_weight = 0.6) const;
+
   /// Checks every invariant (sizes, finite values, weights normalised, parents before children,
   /// bounds ordered, surface points valid, axes orthonormal).
   /// \throws InvalidInput naming the first violation.
