@@ -155,6 +155,11 @@ struct FitOptions {
   /// A given sternal notch farther than this sideways (1.5× that vertically) from the jugular
   /// notch found on the scan on the other landmarks' midline is flagged (midline_notch_check.h).
   double notch_check_mm = 12.0;
+  /// A given nipple more than 6 mm below the breast's apex on the scan and more than 7 mm lower on
+  /// its breast than the other given nipple is on its own is flagged (nipple_apex_check.h, session
+  /// 24). Off for torsos whose nipples are not at their breasts' apexes by construction: the
+  /// template-made synthetic ones carry the template's nipple 17–29 mm below it.
+  bool nipple_below_apex_check = true;
   /// Landmark-free: the kept orientation must score this share better than the best different
   /// one (fit/orientation_search.h), else a warning says the orientation is uncertain.
   double orientation_min_margin = 0.15;

@@ -84,7 +84,7 @@ const std::vector<Field<FitOptions>>& fields() {
       {"max_blendshapes", &F::max_blendshapes}, {"max_landmarks", &F::max_landmarks},
       {"use_landmarks", &F::use_landmarks}, {"landmark_warning_mm", &F::landmark_warning_mm},
       {"landmark_check_mm", &F::landmark_check_mm}, {"nipple_tip_check_mm", &F::nipple_tip_check_mm},
-      {"notch_check_mm", &F::notch_check_mm},
+      {"notch_check_mm", &F::notch_check_mm}, {"nipple_below_apex_check", &F::nipple_below_apex_check},
       {"max_surface_mae_mm", &F::max_surface_mae_mm}, {"min_kept_fraction", &F::min_kept_fraction},
       {"orientation_min_margin", &F::orientation_min_margin}, {"anatomical_nipples", &F::anatomical_nipples},
       {"anatomical_nipple_apex", &F::anatomical_nipple_apex},

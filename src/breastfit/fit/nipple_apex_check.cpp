@@ -4,7 +4,12 @@
 
 namespace breastfit::fit {
 
-NippleApexCheck check_nipple_apex(const SternumFrame& frame, const Vec3& given, const Vec3& apex, double tip_ratio) {
+double height_above_apex_mm(const SternumFrame& frame, const Vec3& given, const Vec3& apex) {
+  return (given - apex).dot(frame.up);
+}
+
+NippleApexCheck check_nipple_apex(const SternumFrame& frame, const Vec3& given, const Vec3& apex, double tip_ratio,
+                                  std::optional<double> partner_up_mm) {
   NippleApexCheck c;
   const Vec3 d = given - apex;
   c.deviation = Vec3(d.dot(frame.lateral), d.dot(frame.up), d.dot(frame.front));
@@ -15,6 +20,9 @@ NippleApexCheck check_nipple_apex(const SternumFrame& frame, const Vec3& given, 
   if (up > 0) relative = std::max(relative, up / kApexAboveMm);
   if (front < 0 && up > -kApexBehindAllowedBelowMm && tip_ratio > kApexBehindTipRatio)
     relative = std::max(relative, -front / kApexBehindMm);
+  // Below: both conditions beyond their boundaries, so the nearer one is the rule's scale.
+  if (partner_up_mm && up < 0)
+    relative = std::max(relative, std::min(-up / kApexBelowMm, (*partner_up_mm - up) / kApexBelowPartnerMm));
   c.tolerance_mm = relative > 0 ? c.distance_mm / relative : c.distance_mm;
   return c;
 }

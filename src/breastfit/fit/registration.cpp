@@ -733,14 +733,23 @@ void check_agreement(const model::RiggedModel& model, const Points& V, const mod
                                              fmt(100 * ratio, 0) + " % of its tolerance off too"});
   }
   if (!axes) return;
+  // Each given nipple's height above its apex, for its partner's rule (nipple_apex_check.h).
+  std::vector<std::optional<double>> height(given.size());
+  std::vector<std::optional<SternumFrame>> frames(given.size());
   for (size_t i = 0; i < given.size(); ++i) {
     const std::string& name = given[i].name;
     if (name != "nipple_R" && name != "nipple_L") continue;
-    const auto frame = fitted_sternum_frame(model, V, params, name.back());
-    const auto& apex = nipples[i].apex;
-    if (!frame || !apex) continue;
+    frames[i] = fitted_sternum_frame(model, V, params, name.back());
+    if (frames[i] && nipples[i].apex) height[i] = height_above_apex_mm(*frames[i], given[i].position, *nipples[i].apex);
+  }
+  for (size_t i = 0; i < given.size(); ++i) {
+    if (!height[i]) continue;
+    const LandmarkTarget* partner = find_landmark(given, given[i].name == "nipple_R" ? "nipple_L" : "nipple_R");
+    const std::optional<double> partner_up = partner && options.nipple_below_apex_check
+                                                 ? height[static_cast<size_t>(partner - given.data())]
+                                                 : std::nullopt;
     const double tip_ratio = before[i] ? before[i]->distance_mm / before[i]->tolerance_mm : 0.0;
-    const NippleApexCheck c = check_nipple_apex(*frame, given[i].position, *apex, tip_ratio);
+    const NippleApexCheck c = check_nipple_apex(*frames[i], given[i].position, *nipples[i].apex, tip_ratio, partner_up);
     keep_if_worse(out[i], AnatomyCheck{c.distance_mm, c.tolerance_mm, "the breast's apex on the scan"});
   }
   const LandmarkTarget *n = find_landmark(given, "sternal_notch"), *x = find_landmark(given, "xiphoid"),
