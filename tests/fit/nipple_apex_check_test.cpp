@@ -38,6 +38,7 @@ TEST(NippleApexCheck, AboveTheApexIsFlagged) {
   EXPECT_TRUE(c.flagged());
   EXPECT_NEAR(c.deviation.y(), 14.0, 1e-9);
   EXPECT_NEAR(c.tolerance_mm, kApexAboveMm, 1e-9);  // along the vertical, the rule's boundary
+  EXPECT_EQ(c.rule, "above it");
   EXPECT_FALSE(at(0, 11.0, 0, 0.0).flagged());
 }
 
@@ -60,6 +61,7 @@ TEST(NippleApexCheck, BelowTheApexAndBelowThePartnerIsFlagged) {
   EXPECT_NEAR(c.deviation.y(), -11.0, 1e-9);
   // The nearer condition is the scale: 11 / 6 below the apex, 12 / 7 below the partner.
   EXPECT_NEAR(c.distance_mm / c.tolerance_mm, 12.0 / 7.0, 1e-9);
+  EXPECT_EQ(c.rule, "below it and lower on its breast than the other nipple");
   EXPECT_TRUE(at(0.0, -7.0, -3.0, 0.3, 2.0).flagged());
 }
 

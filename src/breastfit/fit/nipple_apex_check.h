@@ -22,6 +22,7 @@
 ///   sides (in the test torsos 4.9 and 6.6 mm apart), which the partner's condition leaves alone.
 ///   Without the other nipple (not given, or its apex not found) the rule does not apply.
 #include <optional>
+#include <string>
 
 #include "breastfit/core/types.h"
 #include "breastfit/fit/shoulder_landmarks.h"
@@ -42,6 +43,9 @@ struct NippleApexCheck {
   /// The rules' boundary along the deviation (mm): flagged when distance_mm > tolerance_mm; the
   /// distance itself (never flagged) when no rule applies.
   double tolerance_mm = 0;
+  /// The rule that sets tolerance_mm, for the warning: "above it", "behind it", "below it and lower
+  /// on its breast than the other nipple"; empty when none applies.
+  std::string rule;
   bool flagged() const { return distance_mm > tolerance_mm; }
 };
 

@@ -750,7 +750,8 @@ void check_agreement(const model::RiggedModel& model, const Points& V, const mod
                                                  : std::nullopt;
     const double tip_ratio = before[i] ? before[i]->distance_mm / before[i]->tolerance_mm : 0.0;
     const NippleApexCheck c = check_nipple_apex(*frames[i], given[i].position, *nipples[i].apex, tip_ratio, partner_up);
-    keep_if_worse(out[i], AnatomyCheck{c.distance_mm, c.tolerance_mm, "the breast's apex on the scan"});
+    keep_if_worse(out[i], AnatomyCheck{c.distance_mm, c.tolerance_mm,
+                                       "the breast's apex on the scan" + (c.flagged() ? " (" + c.rule + ")" : "")});
   }
   const LandmarkTarget *n = find_landmark(given, "sternal_notch"), *x = find_landmark(given, "xiphoid"),
                        *r = find_landmark(given, "lowest_breast_R"), *l = find_landmark(given, "lowest_breast_L");
