@@ -177,6 +177,27 @@ FitOptions seed3_options() {
   return o;
 }
 
+// The below-the-apex rule reaches the registration: on the seed-3 torso as given, the right nipple
+// (the template's, 24 mm below its breast's apex, lower than the left one on its own) is flagged
+// by that rule, and the left one is not; with the rule off neither is.
+TEST(LandmarkPrediction, TheNippleBelowItsApexAndItsPartnerIsFlaggedInTheFit) {
+  const auto& model = *test::default_template();
+  const synth::SynthCase& c = aligned_seed3_case();
+  ScanTarget scan(c.scan);
+  const auto lms = match_landmarks(model, given(c));
+  const FitResult on = register_template(model, scan, lms, FitOptions{});
+  const LandmarkCheck* right = find(on.summary, "nipple_R");
+  const LandmarkCheck* left = find(on.summary, "nipple_L");
+  ASSERT_NE(right, nullptr);
+  ASSERT_NE(left, nullptr);
+  EXPECT_TRUE(right->flagged);
+  EXPECT_NE(right->anatomy.find("below it and lower on its breast than the other nipple"), std::string::npos)
+      << right->anatomy;
+  EXPECT_FALSE(left->flagged) << left->anatomy;
+  const FitResult off = register_template(model, scan, lms, seed3_options());
+  EXPECT_FALSE(find(off.summary, "nipple_R")->flagged);
+}
+
 // A lowest breast point moved 20 mm sideways, within what its pair's mirror check tolerates, where
 // that check blames its partner: the moved one is flagged because it enters the combined check
 // with the pair's asymmetry (bilateral_check.h unblamed_member; without that it is not flagged).
