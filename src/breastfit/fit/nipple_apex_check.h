@@ -8,7 +8,7 @@
 /// along the skin leaves the apex behind it (it goes down the breast's slope: 2–13 mm behind) or
 /// above it. On the template-made synthetic torsos, though, the template's nipple lies about 20 mm
 /// *below* the level apex and up to 17 mm behind it (the template's breast points down), so
-/// "behind" alone would flag them; two rules:
+/// "behind" alone would flag them; three rules:
 /// - more than `kApexAboveMm` (12 mm) above the apex: flagged (as given at most 8.8 mm; synthetic
 ///   at most 4.2);
 /// - more than `kApexBehindMm` (5 mm) behind it, *and* not more than 6 mm below it, *and* its
