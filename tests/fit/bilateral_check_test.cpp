@@ -159,5 +159,48 @@ TEST(BilateralCheck, NeedsTheSternumAndTwoOtherPairs) {
   EXPECT_DOUBLE_EQ(bilateral_tolerance_mm("acromion_", 30.0)->x(), 2.0 * bilateral_tolerance_mm("acromion_", 15.0)->x());
 }
 
+// Session 24: a pair beyond its tolerance whose members are about as far from the typical
+// proportions (margin below 5 mm), and whose predictions do not decide, cannot tell which of the two
+// is off; a clear margin, a deciding prediction or a pair within its tolerance can.
+TEST(BilateralCheck, ABlameThePairCannotMakeIsUncertain) {
+  BilateralCheck c;
+  c.right = "acromion_R";
+  c.left = "acromion_L";
+  c.distance_mm = 30.0;
+  c.tolerance_mm = 18.0;
+  c.blamed = "acromion_L";
+  c.blame_margin_mm = 3.0;
+  EXPECT_TRUE(blame_is_uncertain(c, 0.2, 0.3));
+  EXPECT_FALSE(blame_is_uncertain(c, 0.6, 0.1));  // the right one's prediction moved: it is blamed
+  c.blame_margin_mm = 8.0;
+  EXPECT_FALSE(blame_is_uncertain(c, 0.2, 0.3));  // the proportions tell
+  c.blame_margin_mm = 3.0;
+  c.distance_mm = 15.0;
+  EXPECT_FALSE(blame_is_uncertain(c, 0.2, 0.3));  // within the tolerance: nobody is flagged by the pair
+  c.distance_mm = 30.0;
+  c.right = "lowest_breast_R";  // predictions never decide for the lowest breast points
+  c.left = "lowest_breast_L";
+  EXPECT_TRUE(blame_is_uncertain(c, 0.9, 0.1));
+}
+
+// The blame margin is how much farther from the pair's typical proportions the blamed one is.
+TEST(BilateralCheck, TheBlameMarginIsTheDifferenceOfTheProportions) {
+  const synth::SynthCase& c = synth_case(synth::PoseType::Standing);
+  const Frame f = body_frame(c);
+  const auto margin_after = [&](double mm) {
+    auto landmarks = truth_targets(c);
+    move(landmarks, "acromion_R", mm * f.up);
+    const BilateralCheck* off = pair_of(check_bilateral_pairs(landmarks, 15.0), "acromion_R");
+    EXPECT_NE(off, nullptr);
+    if (!off) return 0.0;
+    EXPECT_TRUE(off->flagged());
+    EXPECT_EQ(off->axis, "vertically");
+    EXPECT_EQ(off->blamed, "acromion_R");
+    return off->blame_margin_mm;
+  };
+  // 10 mm further up: 10 mm farther from the typical proportions, the partner where it was.
+  EXPECT_NEAR(margin_after(35.0) - margin_after(25.0), 10.0, 1.0);
+}
+
 }  // namespace
 }  // namespace breastfit::fit

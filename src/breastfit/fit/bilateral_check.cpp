@@ -84,12 +84,26 @@ std::optional<std::string> unblamed_member(const BilateralCheck& check) {
   return check.blamed == check.right ? check.left : check.right;
 }
 
-std::string blamed_by_prediction(const BilateralCheck& check, double right_ratio, double left_ratio) {
+namespace {
+
+// The member whose prediction decides the blame (blamed_by_prediction), if one does.
+std::optional<std::string> decided_by_prediction(const BilateralCheck& check, double right_ratio, double left_ratio) {
   if (!check.flagged() || !(check.right.rfind("acromion_", 0) == 0 || check.right.rfind("midaxillary_", 0) == 0))
-    return check.blamed;
+    return std::nullopt;
   if (right_ratio >= kBlameByPredictionMin && right_ratio >= kBlameByPredictionRatio * left_ratio) return check.right;
   if (left_ratio >= kBlameByPredictionMin && left_ratio >= kBlameByPredictionRatio * right_ratio) return check.left;
-  return check.blamed;
+  return std::nullopt;
+}
+
+}  // namespace
+
+std::string blamed_by_prediction(const BilateralCheck& check, double right_ratio, double left_ratio) {
+  return decided_by_prediction(check, right_ratio, left_ratio).value_or(check.blamed);
+}
+
+bool blame_is_uncertain(const BilateralCheck& check, double right_ratio, double left_ratio) {
+  return check.flagged() && check.blame_margin_mm < kUncertainBlameMm &&
+         !decided_by_prediction(check, right_ratio, left_ratio);
 }
 
 std::vector<BilateralCheck> check_bilateral_pairs(const std::vector<LandmarkTarget>& landmarks,
@@ -137,6 +151,7 @@ std::vector<BilateralCheck> check_bilateral_pairs(const std::vector<LandmarkTarg
     for (int a = 1; a < 3; ++a)
       if (kAxes[a] == c.axis) k = a;
     c.blamed = std::abs(left(k)) > std::abs(right(k)) ? l->name : r->name;
+    c.blame_margin_mm = std::abs(std::abs(left(k)) - std::abs(right(k))) * sternum;
     out.push_back(c);
   }
   // Of the pairs beyond their tolerance only the farthest: one wrong landmark tilts the others' midline.

@@ -536,12 +536,17 @@ void check_pairs(const std::vector<LandmarkTarget>& given, const std::vector<Vec
                                 : 0.0;
   };
   for (BilateralCheck c : check_bilateral_pairs(given, options.landmark_check_mm)) {
+    const bool both = blame_is_uncertain(c, ratio(c.right), ratio(c.left));
     c.blamed = blamed_by_prediction(c, ratio(c.right), ratio(c.left));
     const std::string& partner = c.blamed == c.right ? c.left : c.right;
+    const std::string which = both ? "; one of the two is off, the proportions cannot tell which" : "";
     const size_t i = index_of(c.blamed);
     if (i < out.size() && !out[i])
       out[i] = AnatomyCheck{c.distance_mm, c.tolerance_mm,
-                            "the mirror image of '" + partner + "' across the other landmarks' midline, off " + c.axis};
+                            "the mirror image of '" + partner + "' across the other landmarks' midline, off " + c.axis + which};
+    if (const size_t j = both ? index_of(partner) : out.size(); j < out.size() && !out[j])
+      out[j] = AnatomyCheck{c.distance_mm, c.tolerance_mm,
+                            "the mirror image of '" + c.blamed + "' across the other landmarks' midline, off " + c.axis + which};
     const auto other = unblamed_member(c);
     if (const size_t j = other ? index_of(*other) : unblamed.size(); j < unblamed.size())
       unblamed[j] = AnatomyCheck{
