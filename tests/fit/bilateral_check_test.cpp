@@ -110,16 +110,22 @@ TEST(BilateralCheck, TheMemberNotBlamedIsLeftToTheCombinedCheckWithinTheToleranc
   EXPECT_TRUE(seen);
 }
 
-// Session 18: a pair beyond its tolerance blames the member whose prediction moved (3× its
-// partner's, at least 0.4 of its tolerance) over the proportions' guess; acromia and mid-axillary
-// points only, and only beyond the tolerance.
-TEST(BilateralCheck, APairBeyondItsToleranceBlamesTheMemberWhosePredictionMoved) {
+// The acromia 30 mm from mirror images, tolerance 18 mm, acromion_L blamed by the proportions.
+BilateralCheck acromia_beyond_tolerance() {
   BilateralCheck c;
   c.right = "acromion_R";
   c.left = "acromion_L";
   c.distance_mm = 30.0;
   c.tolerance_mm = 18.0;
-  c.blamed = "acromion_L";  // by proportions
+  c.blamed = "acromion_L";
+  return c;
+}
+
+// Session 18: a pair beyond its tolerance blames the member whose prediction moved (3× its
+// partner's, at least 0.4 of its tolerance) over the proportions' guess; acromia and mid-axillary
+// points only, and only beyond the tolerance.
+TEST(BilateralCheck, APairBeyondItsToleranceBlamesTheMemberWhosePredictionMoved) {
+  BilateralCheck c = acromia_beyond_tolerance();  // acromion_L blamed by proportions
   EXPECT_EQ(blamed_by_prediction(c, 0.6, 0.1), "acromion_R");
   EXPECT_EQ(blamed_by_prediction(c, 0.6, 0.25), "acromion_L");   // 2.4×: the proportions' blame stands
   EXPECT_EQ(blamed_by_prediction(c, 0.35, 0.05), "acromion_L");  // below 0.4 of its tolerance
@@ -163,12 +169,7 @@ TEST(BilateralCheck, NeedsTheSternumAndTwoOtherPairs) {
 // proportions (margin below 5 mm), and whose predictions do not decide, cannot tell which of the two
 // is off; a clear margin, a deciding prediction or a pair within its tolerance can.
 TEST(BilateralCheck, ABlameThePairCannotMakeIsUncertain) {
-  BilateralCheck c;
-  c.right = "acromion_R";
-  c.left = "acromion_L";
-  c.distance_mm = 30.0;
-  c.tolerance_mm = 18.0;
-  c.blamed = "acromion_L";
+  BilateralCheck c = acromia_beyond_tolerance();
   c.blame_margin_mm = 3.0;
   EXPECT_TRUE(blame_is_uncertain(c, 0.2, 0.3));
   EXPECT_FALSE(blame_is_uncertain(c, 0.6, 0.1));  // the right one's prediction moved: it is blamed
