@@ -12,7 +12,7 @@ NippleApexCheck check_nipple_apex(const SternumFrame& frame, const Vec3& given, 
                                   std::optional<double> partner_up_mm) {
   NippleApexCheck c;
   const Vec3 d = given - apex;
-  c.deviation = Vec3(d.dot(frame.lateral), d.dot(frame.up), d.dot(frame.front));
+  c.deviation = Vec3(d.dot(frame.lateral), height_above_apex_mm(frame, given, apex), d.dot(frame.front));
   c.distance_mm = d.norm();
   // Each rule as a scale: the deviation is beyond the rule's boundary by `relative` (> 1: flagged).
   double relative = 0;

@@ -539,19 +539,17 @@ void check_pairs(const std::vector<LandmarkTarget>& given, const std::vector<Vec
     const bool both = blame_is_uncertain(c, ratio(c.right), ratio(c.left));
     c.blamed = blamed_by_prediction(c, ratio(c.right), ratio(c.left));
     const std::string& partner = c.blamed == c.right ? c.left : c.right;
-    const std::string which = both ? "; one of the two is off, the proportions cannot tell which" : "";
+    // A member's check against the mirror image of `of` (the other member).
+    const auto mirror_of = [&](const std::string& of) {
+      return AnatomyCheck{c.distance_mm, c.tolerance_mm,
+                          "the mirror image of '" + of + "' across the other landmarks' midline, off " + c.axis +
+                              (both ? "; one of the two is off, the proportions cannot tell which" : "")};
+    };
     const size_t i = index_of(c.blamed);
-    if (i < out.size() && !out[i])
-      out[i] = AnatomyCheck{c.distance_mm, c.tolerance_mm,
-                            "the mirror image of '" + partner + "' across the other landmarks' midline, off " + c.axis + which};
-    if (const size_t j = both ? index_of(partner) : out.size(); j < out.size() && !out[j])
-      out[j] = AnatomyCheck{c.distance_mm, c.tolerance_mm,
-                            "the mirror image of '" + c.blamed + "' across the other landmarks' midline, off " + c.axis + which};
+    if (i < out.size() && !out[i]) out[i] = mirror_of(partner);
+    if (const size_t j = both ? index_of(partner) : out.size(); j < out.size() && !out[j]) out[j] = mirror_of(c.blamed);
     const auto other = unblamed_member(c);
-    if (const size_t j = other ? index_of(*other) : unblamed.size(); j < unblamed.size())
-      unblamed[j] = AnatomyCheck{
-          c.distance_mm, c.tolerance_mm,
-          "the mirror image of '" + c.blamed + "' across the other landmarks' midline, off " + c.axis};
+    if (const size_t j = other ? index_of(*other) : unblamed.size(); j < unblamed.size()) unblamed[j] = mirror_of(c.blamed);
   }
 }
 
