@@ -259,8 +259,14 @@ void register_bench(CLI::App& app, int& exit_code) {
     std::fprintf(text, "%-24s %9s %9s %9s %9s %9s %10s %6s %10s %10s %8s\n", "case", "time_s", "total_s", "full_s", "cpu_s",
                 "tot_cpu_s", "full_cpu_s", "iters", "surf_mae", "lm_mae", "status");
     std::vector<double> cpu_medians, total_cpu_medians, full_cpu_medians;
+    // The phases of the time_s registrations (report.json's timings_s: index build, the fit's
+    // stages and checks, transfer, measurements), in the order they first ran; per case the median
+    // over its runs, then the median over the cases.
+    std::vector<std::string> phase_order;
+    std::map<std::string, std::vector<double>> phase_case_medians;
     for (const auto& dir : experiments::find_case_dirs(args->dir)) {
       std::vector<double> times, totals, fulls, cpus, total_cpus, full_cpus;
+      std::map<std::string, std::vector<double>> phase_runs;
       pipeline::RegisterResult last;
       auto read_request = [&] {
         pipeline::RegisterRequest req;
@@ -281,6 +287,12 @@ void register_bench(CLI::App& app, int& exit_code) {
         cpus.push_back(process_cpu_s() - cpu_register);
         const double registered_s = total.seconds(), registered_cpu = process_cpu_s() - cpu_start;
         times.push_back(last.time_s);
+        std::map<std::string, double> run_ms;  // a phase run twice (refine after a flag) counts both
+        for (const auto& t : last.timings) {
+          if (std::find(phase_order.begin(), phase_order.end(), t.phase) == phase_order.end()) phase_order.push_back(t.phase);
+          run_ms[t.phase] += 1000.0 * t.seconds;
+        }
+        for (const auto& [phase, ms] : run_ms) phase_runs[phase].push_back(ms);
         Timer outputs;
         const double cpu_outputs = process_cpu_s();
         if (last.usable()) pipeline::write_register_outputs(scratch, last, *model, true, {}, output_options);
@@ -321,6 +333,12 @@ void register_bench(CLI::App& app, int& exit_code) {
                        {"full_cpu_s_median", median(full_cpus)}, {"full_cpu_s_all", full_cpus},
                        {"iterations", last.fit.summary.iterations.size()}, {"usable", last.usable()},
                        {"surface_mae_mm", last.surface.mae}, {"landmark_mae_mm", last.landmarks.stats.mae}});
+      nlohmann::json phases = nlohmann::json::object();
+      for (const auto& [phase, ms] : phase_runs) {
+        phases[phase] = median(ms);
+        phase_case_medians[phase].push_back(median(ms));
+      }
+      cases.back()["phases_ms_median"] = phases;
     }
     std::error_code ec;
     std::filesystem::remove_all(scratch, ec);
@@ -331,11 +349,22 @@ void register_bench(CLI::App& app, int& exit_code) {
                 "%.2f)\n",
                 median(medians), median(total_medians), median(full_medians), median(cpu_medians),
                 median(total_cpu_medians), median(full_cpu_medians), medians.size(), args->repeat, fit::resolve_threads(options.threads), load[0]);
+    nlohmann::json median_phases = nlohmann::json::object();
+    if (!phase_order.empty()) {
+      std::fprintf(text, "phases of the time_s registrations, ms (median over cases of the per-case medians):");
+      for (const auto& phase : phase_order) {
+        median_phases[phase] = median(phase_case_medians[phase]);
+        std::fprintf(text, "%s %s %.1f", phase == phase_order.front() ? "" : ",", phase.c_str(),
+                     median(phase_case_medians[phase]));
+      }
+      std::fprintf(text, "\n");
+    }
     if (args->json) {
       std::cout << nlohmann::json{{"cases", cases}, {"median_time_s", median(medians)},
                          {"median_total_s", median(total_medians)}, {"median_full_s", median(full_medians)},
                          {"median_cpu_s", median(cpu_medians)}, {"median_total_cpu_s", median(total_cpu_medians)},
                          {"median_full_cpu_s", median(full_cpu_medians)},
+                         {"median_phases_ms", median_phases},
                          {"load_average", load[0]}, {"repeat", args->repeat},
                          {"threads", fit::resolve_threads(options.threads)}}
                 .dump(1)

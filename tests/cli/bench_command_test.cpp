@@ -56,6 +56,21 @@ TEST(BenchCommand, PrintsSolverAndWholeRunTimesPerCaseAndTheirMedians) {
       EXPECT_GE(c["total_cpu_s_all"][k].get<double>(), c["cpu_s_all"][k].get<double>());
       EXPECT_GT(c["full_cpu_s_all"][k].get<double>(), c["total_cpu_s_all"][k].get<double>());
     }
+    // The phases of the time_s registrations: per case and their medians over the cases, each
+    // phase no longer than the run (index build and fit within time_s, the rest within total_s).
+    const auto& phases = c["phases_ms_median"];
+    for (const char* phase : {"index_build", "initialization", "stage:shape", "stage:refine", "landmark_checks",
+                              "transfer", "measurements"}) {
+      ASSERT_TRUE(phases.contains(phase)) << phase << " in " << phases.dump();
+      EXPECT_GT(phases[phase].get<double>(), 0.0) << phase;
+      EXPECT_EQ(runs[threads - 1]["median_phases_ms"][phase], phases[phase]) << phase;  // one case
+    }
+    EXPECT_LT(phases["index_build"].get<double>() + phases["stage:shape"].get<double>(),
+              1000.0 * c["time_s_median"].get<double>());
+    EXPECT_NE(out.find("phases of the time_s registrations, ms (median over cases of the per-case medians): "),
+              std::string::npos)
+        << out;
+    EXPECT_TRUE(std::regex_search(out, std::regex(R"(index_build \d+\.\d, .* stage:shape \d+\.\d,)"))) << out;
     EXPECT_TRUE(runs[threads - 1]["load_average"].is_number());
     EXPECT_EQ(runs[threads - 1]["threads"], threads);
   }

@@ -25,5 +25,15 @@ TEST(FitSummaryJson, ReportsTerminationVerdictEnergiesAndTimings) {
   EXPECT_EQ(j["stages"][0]["converged"], true);
 }
 
+TEST(FitSummaryJson, APhaseThatRanTwiceCountsBothRuns) {
+  // The refine stage run again after a flagged landmark is timed as a second "stage:refine".
+  FitSummary s;
+  s.timings = {{"stage:refine", 0.25}, {"landmark_checks", 0.125}, {"stage:refine", 0.5}};
+  const nlohmann::json j = to_json(s);
+  EXPECT_DOUBLE_EQ(j["timings_s"]["stage:refine"].get<double>(), 0.75);
+  EXPECT_DOUBLE_EQ(j["timings_s"]["landmark_checks"].get<double>(), 0.125);
+  EXPECT_EQ(j["timings_s"].size(), 2u);
+}
+
 }  // namespace
 }  // namespace breastfit::fit

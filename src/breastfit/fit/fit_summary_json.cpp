@@ -21,7 +21,8 @@ nlohmann::json to_json(const EnergyBreakdown& e) {
 
 nlohmann::json timings_json(const std::vector<PhaseTime>& timings) {
   nlohmann::json out = nlohmann::json::object();
-  for (const auto& p : timings) out[p.phase] = p.seconds;
+  // A phase that ran twice (the refine stage again after a flagged landmark) counts both runs.
+  for (const auto& p : timings) out[p.phase] = out.value(p.phase, 0.0) + p.seconds;
   return out;
 }
 

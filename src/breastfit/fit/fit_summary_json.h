@@ -16,7 +16,8 @@ nlohmann::json landmark_checks_json(const std::vector<LandmarkCheck>& checks);
 /// runner-up), "confident", "body_frame", "arm_abduction_deg", "arm_pose", "candidates"}; null when
 /// initialised from landmarks.
 nlohmann::json orientation_json(const OrientationSummary& o);
-/// {"<phase>": seconds, …} in order.
+/// {"<phase>": seconds, …}; a phase listed more than once (the refine stage run again after a
+/// flagged landmark) is the sum of its runs.
 nlohmann::json timings_json(const std::vector<PhaseTime>& timings);
 
 }  // namespace breastfit::fit
