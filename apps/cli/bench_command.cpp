@@ -21,6 +21,7 @@
 #include "breastfit/core/errors.h"
 #include "breastfit/core/timer.h"
 #include "breastfit/experiments/case_set.h"
+#include "breastfit/fit/fit_summary.h"
 #include "breastfit/fit/parallel_chunks.h"
 #include "breastfit/io/io.h"
 #include "breastfit/io/landmarks_io.h"
@@ -41,6 +42,14 @@ double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   const size_t n = v.size();
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+// A registration's phase times in ms by name (RegisterResult::timings); a phase listed twice (the
+// refine stage again after a flagged landmark) counts both runs, as in report.json's timings_s.
+std::map<std::string, double> phase_ms(const std::vector<fit::PhaseTime>& timings) {
+  std::map<std::string, double> out;
+  for (const auto& t : timings) out[t.phase] += 1000.0 * t.seconds;
+  return out;
 }
 
 // CPU seconds of the whole process so far (every thread; OpenMP's waiting threads spin, so with
@@ -100,8 +109,8 @@ std::vector<double> time_refits(const std::filesystem::path& dir, const std::sha
     first_ms.push_back(outcome->surface_ms);
     first_cpu_ms.push_back(outcome->surface_cpu_ms);
     iterations.push_back(static_cast<double>(outcome->result.fit.summary.iterations.size()));
-    for (const auto& p : outcome->result.timings)
-      if (p.phase != "scan_preparation" && p.phase != "index_build") phases_ms[p.phase].push_back(1000 * p.seconds);
+    for (const auto& [phase, ms_of_phase] : phase_ms(outcome->result.timings))
+      if (phase != "scan_preparation" && phase != "index_build") phases_ms[phase].push_back(ms_of_phase);
     if (deviations && outcome->result.usable()) {
       const auto whole = slow->run_fit(moved, true);
       if (whole->result.usable()) deviations->full_refine.push_back(pipeline::fit_deviation(outcome->result, whole->result));
@@ -287,12 +296,9 @@ void register_bench(CLI::App& app, int& exit_code) {
         cpus.push_back(process_cpu_s() - cpu_register);
         const double registered_s = total.seconds(), registered_cpu = process_cpu_s() - cpu_start;
         times.push_back(last.time_s);
-        std::map<std::string, double> run_ms;  // a phase run twice (refine after a flag) counts both
-        for (const auto& t : last.timings) {
+        for (const auto& t : last.timings)
           if (std::find(phase_order.begin(), phase_order.end(), t.phase) == phase_order.end()) phase_order.push_back(t.phase);
-          run_ms[t.phase] += 1000.0 * t.seconds;
-        }
-        for (const auto& [phase, ms] : run_ms) phase_runs[phase].push_back(ms);
+        for (const auto& [phase, ms] : phase_ms(last.timings)) phase_runs[phase].push_back(ms);
         Timer outputs;
         const double cpu_outputs = process_cpu_s();
         if (last.usable()) pipeline::write_register_outputs(scratch, last, *model, true, {}, output_options);
