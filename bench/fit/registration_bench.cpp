@@ -1,5 +1,6 @@
 // Benchmarks of the registration's parts and of a whole fit, on a synthetic case made from the
-// shipped default template (no external data): scan index build, correspondences, the arm search
+// shipped default template (no external data): scan index build, correspondences (at the
+// landmark-initialised pose and at the fitted one), the arm search
 // of the initialisation, normal equations assembly (with and without the blendshapes), one damped
 // LM step's solve, one LM iteration, posing the template, the placed landmarks' leave-one-out predictions, the surface-detail layer, and the full registration (what report.json's time_s
 // measures); the parallel parts with 1 and 2 threads (the last argument).
@@ -48,6 +49,12 @@ struct Fixture {
     scan = std::make_unique<fit::ScanTarget>(scan_mm, options.correspondences.reverse_samples);
   }
 
+  /// The parameters a full registration fits (computed once, on first use).
+  const model::PoseParams& fitted() {
+    static const model::PoseParams p = fit::register_template(model, *scan, targets, options).params;
+    return p;
+  }
+
   /// A problem at the landmark-initialised pose (`o`: its options, kept by reference).
   std::unique_ptr<fit::Problem> problem(const fit::FitOptions& o) {
     auto p = std::make_unique<fit::Problem>(model, *scan, o, targets);
@@ -93,6 +100,33 @@ void BM_Correspondences(benchmark::State& state) {
                  std::to_string(state.range(1)) + " threads");
 }
 BENCHMARK(BM_Correspondences)->Args({0, 1})->Args({1, 1})->Args({0, 2})->Args({1, 2})->Unit(benchmark::kMillisecond);
+
+// The searches of a late iteration: at the fitted parameters and at the same moved by 0.5 mm,
+// alternately (each search warm-started from the other pose's answers, as a stage's next search
+// starts from its last one), at the refine stage's threshold (15 mm), every vertex. Args: (with the
+// reverse term, threads). The landmark-initialised pose of BM_Correspondences is far from the
+// scan (searches there test more triangles); a fit's searches are mostly like these.
+void BM_CorrespondencesAtFit(benchmark::State& state) {
+  auto& f = fixture();
+  const fit::FitOptions options = with_threads(f.options, state.range(1));
+  const auto problem_ptr = f.problem(options);
+  fit::Problem& problem = *problem_ptr;
+  model::PoseParams poses[2] = {f.fitted(), f.fitted()};
+  poses[1].global.translation += Vec3(0.3, -0.3, 0.3);
+  int k = 0;
+  for (auto _ : state) {
+    problem.evaluator().set_params(poses[k ^= 1]);
+    problem.update_correspondences(options.correspondences.max_distance_end_mm, 1, state.range(0) != 0);
+  }
+  problem.evaluator().set_params(poses[0]);
+  problem.update_correspondences(options.correspondences.max_distance_end_mm, 1, state.range(0) != 0);
+  state.counters["kept"] = static_cast<double>(problem.pairs().size());  // at the fitted pose
+  state.counters["queries_per_s"] =
+      benchmark::Counter(static_cast<double>(f.model.num_vertices()), benchmark::Counter::kIsIterationInvariantRate);
+  state.SetLabel(std::string(state.range(0) ? "model->scan + scan->model" : "model->scan") + ", " +
+                 std::to_string(state.range(1)) + " threads");
+}
+BENCHMARK(BM_CorrespondencesAtFit)->Args({0, 1})->Args({1, 1})->Args({0, 2})->Args({1, 2})->Unit(benchmark::kMillisecond);
 
 // The arms' angle search of the initialisation (28 posed arms scored against the scan), with
 // `threads` threads.
@@ -160,7 +194,7 @@ BENCHMARK(BM_SetParams)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 void BM_LeaveOneOutPredictions(benchmark::State& state) {
   auto& f = fixture();
   const fit::FitOptions options = with_threads(f.options, state.range(0));
-  static const model::PoseParams fitted = fit::register_template(f.model, *f.scan, f.targets, f.options).params;
+  const model::PoseParams& fitted = f.fitted();
   const auto problem = f.problem(options);
   problem->evaluator().set_params(fitted);
   problem->update_correspondences(options.correspondences.max_distance_end_mm, 1, options.uses_reverse_term());

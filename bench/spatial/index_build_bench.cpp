@@ -1,7 +1,7 @@
 // Where ClosestPointIndex's build time goes, stage by stage, on a large mesh (torso-sized bumpy
 // ellipsoid, 327,680 triangles, like a scan) and a small one (5,120 triangles, like the
-// template the registration re-indexes every iteration), and the large one's build on 1 and 2
-// threads:
+// template the registration re-indexes every iteration), the large one's build on 1 and 2
+// threads, and an index moved to new positions instead of built anew (BM_MoveVertices):
 //
 //   build-*/bench/index_build_bench --benchmark_repetitions=5 \
 //       --benchmark_report_aggregates_only=true
@@ -123,6 +123,23 @@ void BM_MortonTopology(benchmark::State& state) {
   set_counters(state, m);
 }
 
+// The index moved to new vertex positions instead of built anew (ClosestPointIndex::move_vertices,
+// as the fit's reverse term does at each pose): positions alternating between the mesh's own and
+// the mesh bent by a few millimetres (a smooth field), so each call refits the tree.
+void BM_MoveVertices(benchmark::State& state) {
+  const TriangleMesh& m = mesh(static_cast<int>(state.range(0)));
+  breastfit::Points bent = m.V;
+  for (Index i = 0; i < bent.rows(); ++i)
+    bent.row(i) += 3.0 * Vec3(std::sin(0.02 * m.V(i, 2)), std::cos(0.02 * m.V(i, 0)), 0.5).transpose();
+  breastfit::spatial::ClosestPointIndex index(m);
+  bool flip = false;
+  for (auto _ : state) {
+    index.move_vertices((flip = !flip) ? bent : m.V);
+    benchmark::DoNotOptimize(index.mesh().V.data());
+  }
+  set_counters(state, m);
+}
+
 #define STAGE(name) BENCHMARK(name)->Arg(7)->Arg(4)->Unit(benchmark::kMicrosecond)
 STAGE(BM_IndexBuild);
 STAGE(BM_MeshCopy);
@@ -131,6 +148,7 @@ STAGE(BM_VertexNormals);
 STAGE(BM_MortonOrder);
 STAGE(BM_RadixSort);
 STAGE(BM_MortonTopology);
+STAGE(BM_MoveVertices);
 BENCHMARK(BM_IndexBuildThreads)->Args({7, 1})->Args({7, 2})->UseRealTime()->Unit(benchmark::kMicrosecond);
 
 }  // namespace

@@ -1,6 +1,7 @@
 // The problem's correspondences: a saved state given back after a detour through other poses is
 // kept by the next search at its pose and arguments (the landmark check's re-linearised
-// predictions), and it is the state a search there finds.
+// predictions), and it is the state a search there finds; the reverse term's pairs after other
+// poses are a fresh search's.
 #include "breastfit/fit/problem.h"
 
 #include <gtest/gtest.h>
@@ -20,12 +21,17 @@ void expect_same_pairs(const std::vector<Correspondence>& a, const std::vector<C
   }
 }
 
-TEST(Problem, RestoredCorrespondencesAreKeptAtTheirPose) {
-  const model::RiggedModel& model = *test::default_template();
-  // The scan: the template at rest, moved 2 mm; the model posed at rest and 6 mm away.
+// The scan of both tests: the template at rest, moved 2 mm.
+ScanTarget template_moved_2mm(const model::RiggedModel& model) {
   TriangleMesh scan_mesh = model.rest;
   scan_mesh.V.col(1).array() += 2.0;
-  ScanTarget scan(scan_mesh, 300);
+  return ScanTarget(scan_mesh, 300);
+}
+
+TEST(Problem, RestoredCorrespondencesAreKeptAtTheirPose) {
+  const model::RiggedModel& model = *test::default_template();
+  // The model posed at rest and 6 mm away.
+  ScanTarget scan = template_moved_2mm(model);
   const FitOptions options;
   Problem problem(model, scan, options, {});
   const model::PoseParams rest = model::PoseParams::identity(model);
@@ -66,6 +72,39 @@ TEST(Problem, RestoredCorrespondencesAreKeptAtTheirPose) {
   problem.update_correspondences(15.0, 1, true);  // another pose: searched again
   EXPECT_EQ(problem.stats().candidates, model.num_vertices());
   EXPECT_NE(problem.pairs().front().target, at_rest.pairs.front().target);
+}
+
+// The reverse term's pairs at a pose reached through others (the posed model's index moved from
+// pose to pose, not built anew) are those of a fresh problem searching there first.
+TEST(Problem, ReversePairsAfterOtherPosesAreThoseOfAFreshSearch) {
+  const model::RiggedModel& model = *test::default_template();
+  ScanTarget scan = template_moved_2mm(model);
+  const FitOptions options;
+  Problem problem(model, scan, options, {});
+  model::PoseParams pose = model::PoseParams::identity(model);
+  for (const double y : {0.0, 6.0, -3.0}) {  // the arms and the shape unchanged: the translation only
+    pose.global.translation = Vec3(0.5 * y, y, 0.0);
+    problem.evaluator().set_params(pose);
+    problem.update_correspondences(15.0, 1, true);
+  }
+  pose.global.scale *= 1.03;  // and a last pose reached by scaling
+  problem.evaluator().set_params(pose);
+  problem.update_correspondences(15.0, 1, true);
+  Problem fresh(model, scan, options, {});
+  fresh.evaluator().set_params(pose);
+  fresh.update_correspondences(15.0, 1, true);
+  const auto& a = problem.reverse_pairs();
+  const auto& b = fresh.reverse_pairs();
+  ASSERT_GT(b.size(), 100u);
+  ASSERT_EQ(a.size(), b.size());
+  for (size_t k = 0; k < a.size(); ++k) {
+    EXPECT_EQ(a[k].source, b[k].source);
+    EXPECT_EQ(a[k].model_point.face, b[k].model_point.face);
+    EXPECT_EQ(a[k].model_point.bary, b[k].model_point.bary);
+    EXPECT_EQ(a[k].weight, b[k].weight);
+  }
+  EXPECT_EQ(problem.reverse_stats().rejected_normal, fresh.reverse_stats().rejected_normal);
+  EXPECT_EQ(problem.reverse_stats().rejected_boundary, fresh.reverse_stats().rejected_boundary);
 }
 
 }  // namespace

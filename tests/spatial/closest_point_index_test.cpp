@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -399,6 +401,81 @@ TEST(ClosestPointIndex, TakingOverTheMeshGivesTheSameIndex) {
   EXPECT_EQ(taken.mesh().V, m.V);
   EXPECT_EQ(taken.mesh().F, m.F);
   expect_same_answers(copied, taken, queries(m, 2000, 4.0, 1.5, 22));
+}
+
+/// Every query's answer of `moved` (an index moved to m's positions) against a new index over m,
+/// with and without a radius and a hint, and the normals and mesh it keeps.
+void expect_moved_like_new(const ClosestPointIndex& moved, const TriangleMesh& m, std::uint64_t seed) {
+  const ClosestPointIndex fresh(m);
+  EXPECT_EQ(moved.mesh().V, m.V);
+  EXPECT_EQ(moved.vertex_normals(), fresh.vertex_normals());
+  for (Index f = 0; f < m.num_faces(); f += 7) EXPECT_EQ(moved.face_normal(f), fresh.face_normal(f));
+  const std::vector<Vec3> qs = queries(m, 1500, 4.0, 1.2, seed);
+  expect_same_answers(moved, fresh, qs);
+  for (std::size_t i = 0; i < qs.size(); ++i) {
+    const auto a = moved.closest_within(qs[i], 2.0, static_cast<Index>(i) % m.num_faces());
+    const auto b = fresh.closest_within(qs[i], 2.0);
+    ASSERT_EQ(a.has_value(), b.has_value());
+    if (a) EXPECT_EQ(a->face, b->face);
+  }
+}
+
+// move_vertices keeps the tree and refits it: the answers are those of an index built over the
+// moved mesh — bent a little, turned far (boxes much looser than a new tree's), a triangle made
+// degenerate and one made whole again, corners stored as floats kept as floats when the new ones
+// are floats and built anew when not; bad positions are refused and leave the index as it was.
+TEST(ClosestPointIndex, MovedVerticesGiveTheAnswersOfANewIndex) {
+  TriangleMesh m = meshes::noisy_sheet(40, 2.5, 0.8, 0.15, 51);
+  ClosestPointIndex index(m);
+  const Points rest = m.V;
+  // Bent by a smooth field of a few millimetres.
+  for (Index i = 0; i < m.V.rows(); ++i)
+    m.V.row(i) += 2.5 * Vec3(std::sin(0.1 * rest(i, 1)), std::cos(0.07 * rest(i, 0)), std::sin(0.05 * rest(i, 0))).transpose();
+  index.move_vertices(m.V);
+  expect_moved_like_new(index, m, 52);
+  // Turned by 90° about the sheet's middle and lifted: every box far from where the tree was built.
+  const Vec3 mid = rest.colwise().mean().transpose();
+  const Eigen::Matrix3d turn = Eigen::AngleAxisd(M_PI / 2, Vec3(1, 1, 0).normalized()).toRotationMatrix();
+  for (Index i = 0; i < m.V.rows(); ++i) m.V.row(i) = (turn * (rest.row(i).transpose() - mid) + mid + Vec3(0, 0, 30)).transpose();
+  index.move_vertices(m.V);
+  expect_moved_like_new(index, m, 53);
+  // Face 0 collapsed onto its first corner (degenerate), then back.
+  const Points before = m.V;
+  m.V.row(m.F(0, 1)) = m.V.row(m.F(0, 0));
+  m.V.row(m.F(0, 2)) = m.V.row(m.F(0, 0));
+  index.move_vertices(m.V);
+  EXPECT_EQ(index.face_normal(0), Vec3::Zero());
+  expect_moved_like_new(index, m, 54);
+  m.V = before;
+  index.move_vertices(m.V);
+  EXPECT_NE(index.face_normal(0), Vec3::Zero());
+  expect_moved_like_new(index, m, 55);
+  // With the normals given (the caller's mesh::vertex_normals): the same.
+  m.V = rest;
+  index.move_vertices(m.V, mesh::vertex_normals(m));
+  expect_moved_like_new(index, m, 60);
+  // Refused: the wrong number of positions or normals, a NaN. The index still answers for the
+  // last positions.
+  EXPECT_THROW(index.move_vertices(m.V.topRows(m.V.rows() - 1)), InvalidInput);
+  EXPECT_THROW(index.move_vertices(m.V, m.V.topRows(3)), InvalidInput);
+  Points bad = m.V;
+  bad(3, 1) = std::nan("");
+  EXPECT_THROW(index.move_vertices(bad), InvalidInput);
+  EXPECT_THROW(index.move_vertices(m.V, bad), InvalidInput);
+  expect_moved_like_new(index, m, 56);
+
+  // Corners that are floats: leaves stored in floats. Moved to other floats they stay so; moved
+  // to positions that are not floats, the index is built anew; either way the answers are exact.
+  TriangleMesh f = meshes::noisy_sheet(30, 2.0, 0.5, 0.1, 57);
+  f.V = f.V.cast<float>().cast<double>();
+  ClosestPointIndex floats(f);
+  f.V *= 2.0;  // still floats (doubled exactly), all moved
+  ASSERT_EQ(f.V.cast<float>().cast<double>(), f.V);
+  floats.move_vertices(f.V);
+  expect_moved_like_new(floats, f, 58);
+  f.V.array() += 1e-9;  // no longer floats
+  floats.move_vertices(f.V);
+  expect_moved_like_new(floats, f, 59);
 }
 
 TEST(ClosestPointIndex, SameIndexWhateverTheThreadsOfTheBuild) {

@@ -148,17 +148,13 @@ std::vector<Correspondence> find_correspondences(const Points& V, const Points& 
   return pairs;
 }
 
-std::vector<ReverseCorrespondence> find_reverse_correspondences(const Points& V, const Triangles& F,
+std::vector<ReverseCorrespondence> find_reverse_correspondences(const spatial::ClosestPointIndex& index,
                                                                 const ScanTarget& scan,
                                                                 const CorrespondenceOptions& o,
                                                                 double max_distance_mm,
                                                                 CorrespondenceStats* stats,
                                                                 std::vector<Index>* hints, int threads) {
   const double cos_limit = std::cos(o.max_normal_angle_deg * M_PI / 180.0);
-  TriangleMesh posed;
-  posed.V = V;
-  posed.F = F;
-  const spatial::ClosestPointIndex index(std::move(posed));
   const Points& S = scan.sample_points();
   const Points SN = scan.sample_normals();
   if (hints && static_cast<Index>(hints->size()) != S.rows()) hints->assign(S.rows(), -1);

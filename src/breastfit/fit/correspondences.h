@@ -47,11 +47,12 @@ std::vector<Correspondence> find_correspondences(const Points& V, const Points& 
                                                  int stride, CorrespondenceStats* stats,
                                                  std::vector<Index>* hints = nullptr, int threads = 0);
 
-/// Closest points on the posed model (V, F) of the scan's samples; pairs whose model point lies on
-/// the model's open border, beyond max_distance_mm or with disagreeing normals are dropped.
-/// `hints` (optional, one per scan sample, in/out): the model face found last time.
+/// Closest points on the posed model (`model`: its index, built over the posed vertices or moved
+/// to them with ClosestPointIndex::move_vertices) of the scan's samples; pairs whose model point
+/// lies on the model's open border, beyond max_distance_mm or with disagreeing normals are
+/// dropped. `hints` (optional, one per scan sample, in/out): the model face found last time.
 /// `threads`: as for find_correspondences.
-std::vector<ReverseCorrespondence> find_reverse_correspondences(const Points& V, const Triangles& F,
+std::vector<ReverseCorrespondence> find_reverse_correspondences(const spatial::ClosestPointIndex& model,
                                                                 const ScanTarget& scan,
                                                                 const CorrespondenceOptions& options,
                                                                 double max_distance_mm,

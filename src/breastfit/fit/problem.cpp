@@ -2,10 +2,12 @@
 
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "breastfit/core/errors.h"
 #include "breastfit/fit/energy_terms.h"
 #include "breastfit/mesh/normals.h"
+#include "breastfit/spatial/closest_point_index.h"
 
 namespace breastfit::fit {
 
@@ -37,10 +39,18 @@ void Problem::update_correspondences(double max_dist, int stride, bool with_reve
                                       &found_.stats, &found_.hints, options_.threads);
   found_.reverse_pairs.clear();
   found_.reverse_stats = CorrespondenceStats{};
-  if (with_reverse)
-    found_.reverse_pairs =
-        find_reverse_correspondences(ev_.vertices(), model_.rest.F, scan_, options_.correspondences, max_dist,
-                                     &found_.reverse_stats, &found_.reverse_hints, options_.threads);
+  if (with_reverse) {
+    if (posed_index_)
+      posed_index_->move_vertices(ev_.vertices(), N);
+    else {
+      TriangleMesh posed;
+      posed.V = ev_.vertices();
+      posed.F = model_.rest.F;
+      posed_index_ = std::make_unique<spatial::ClosestPointIndex>(std::move(posed));
+    }
+    found_.reverse_pairs = find_reverse_correspondences(*posed_index_, scan_, options_.correspondences, max_dist,
+                                                        &found_.reverse_stats, &found_.reverse_hints, options_.threads);
+  }
 }
 
 void Problem::clear_correspondences() {

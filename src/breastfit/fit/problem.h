@@ -98,6 +98,10 @@ class Problem {
   std::vector<ActiveTerm> terms_;  // the enabled terms, in the table's order
   model::PoseEvaluator ev_;
   CorrespondenceState found_;  // its key is update_correspondences' memo
+  // The posed model's index for the reverse term: built at its first search, then moved to each
+  // new pose (ClosestPointIndex::move_vertices: the same answers as a new one, a fraction of the
+  // cost); a cache, not part of the state.
+  std::unique_ptr<spatial::ClosestPointIndex> posed_index_;
 };
 
 }  // namespace breastfit::fit

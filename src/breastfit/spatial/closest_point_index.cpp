@@ -15,6 +15,7 @@
 #include "breastfit/mesh/normals.h"
 #include "breastfit/spatial/detail/bvh.h"
 #include "breastfit/spatial/detail/bvh4.h"
+#include "breastfit/spatial/detail/bvh4_refit.h"
 #include "breastfit/spatial/detail/leaf_blocks.h"
 #include "breastfit/spatial/detail/parallel_for.h"
 #include "breastfit/spatial/detail/point_triangle_kernel.h"
@@ -114,6 +115,17 @@ struct ClosestPointIndex::Impl {
     detail::fit_inner_boxes(nodes);
     wide = detail::collapse_to_bvh4(nodes);
     detail::BvhNodes().swap(nodes);  // not needed for queries
+  }
+
+  /// `normals`: V's vertex normals, or null to compute them.
+  void move_vertices(const Points& V, const Points* normals) {
+    mesh.V = V;
+    detail::mark_degenerate_faces(mesh, face_flags);
+    vertex_normals = normals ? *normals : mesh::vertex_normals(mesh);
+    if (!detail::refit_bvh4(mesh, face_flags, blocks, wide)) {
+      build(1);
+      if (normals) vertex_normals = *normals;
+    }
   }
 
   const double* vertex(Index face, int corner) const {
@@ -328,6 +340,29 @@ ClosestPointIndex::ClosestPointIndex(TriangleMesh&& mesh, int threads)
 ClosestPointIndex::~ClosestPointIndex() = default;
 ClosestPointIndex::ClosestPointIndex(ClosestPointIndex&&) noexcept = default;
 ClosestPointIndex& ClosestPointIndex::operator=(ClosestPointIndex&&) noexcept = default;
+
+namespace {
+
+// #V by 3 and finite, as move_vertices needs its arguments (`what`: named in the message).
+void check_per_vertex(const Points& P, Index num_vertices, const char* what) {
+  if (P.rows() != num_vertices)
+    throw InvalidInput(std::string("ClosestPointIndex::move_vertices: ") + std::to_string(P.rows()) + " " + what +
+                       " for " + std::to_string(num_vertices) + " vertices");
+  if (!P.allFinite()) throw InvalidInput(std::string("ClosestPointIndex::move_vertices: one of the ") + what + " is not finite");
+}
+
+}  // namespace
+
+void ClosestPointIndex::move_vertices(const Points& V) {
+  check_per_vertex(V, impl_->mesh.num_vertices(), "positions");
+  impl_->move_vertices(V, nullptr);
+}
+
+void ClosestPointIndex::move_vertices(const Points& V, const Points& normals) {
+  check_per_vertex(V, impl_->mesh.num_vertices(), "positions");
+  check_per_vertex(normals, impl_->mesh.num_vertices(), "normals");
+  impl_->move_vertices(V, &normals);
+}
 
 ClosestPoint ClosestPointIndex::closest(const Vec3& q) const {
   impl_->check_query(q);

@@ -36,6 +36,22 @@ class ClosestPointIndex {
   ClosestPointIndex(ClosestPointIndex&&) noexcept;
   ClosestPointIndex& operator=(ClosestPointIndex&&) noexcept;
 
+  /// The same triangles at new positions V (#V by 3, as many rows as the mesh's): the tree keeps
+  /// its leaves and its order, and their corners and boxes are refitted — a fraction of a build,
+  /// with the answers of an index built on the moved mesh (the search is exact and its ties go to
+  /// the lowest face whatever the tree); vertex and face normals, open-border flags and mesh()
+  /// follow. Queries slow down as the boxes grow looser, the farther the vertices move from where
+  /// the tree was built (a new index for a far move). Built anew where the tree cannot be kept
+  /// (leaves stored in floats given positions that are not floats).
+  /// \throws InvalidInput when V has another number of rows or a non-finite entry (the index is
+  /// unchanged then).
+  void move_vertices(const Points& V);
+  /// move_vertices(V) given V's vertex normals as well (mesh::vertex_normals of the moved mesh,
+  /// which the caller has computed: not computed again; they are what vertex_normals() and
+  /// smooth_normal() use).
+  /// \throws InvalidInput as move_vertices(V), or when `normals` is not #V by 3 and finite.
+  void move_vertices(const Points& V, const Points& normals);
+
   /// Exact closest point to q.
   ClosestPoint closest(const Vec3& q) const;
   /// Closest point within max_dist of q, or nullopt (faster: prunes with the radius).

@@ -35,21 +35,26 @@ void validate_triangle_mesh(const TriangleMesh& mesh, const std::string& who) {
   }
 }
 
+void mark_degenerate_faces(const TriangleMesh& mesh, std::vector<std::uint8_t>& flags, int threads) {
+  const double* V = mesh.V.data();
+  parallel_for_chunks(static_cast<std::size_t>(mesh.num_faces()), kFaceChunk, threads,
+                      [&](std::size_t, std::size_t b, std::size_t e) {
+                        for (auto f = static_cast<Index>(b); f < static_cast<Index>(e); ++f) {
+                          const bool degenerate = is_degenerate_triangle(V + 3 * static_cast<std::ptrdiff_t>(mesh.F(f, 0)),
+                                                                         V + 3 * static_cast<std::ptrdiff_t>(mesh.F(f, 1)),
+                                                                         V + 3 * static_cast<std::ptrdiff_t>(mesh.F(f, 2)));
+                          flags[f] = static_cast<std::uint8_t>((flags[f] & ~kFlagDegenerate) |
+                                                               (degenerate ? kFlagDegenerate : 0));
+                        }
+                      });
+}
+
 std::vector<std::uint8_t> triangle_flags(const TriangleMesh& mesh,
                                          std::vector<std::uint8_t>* vertex_boundary, int threads) {
   const Index nf = mesh.num_faces();
   const Index nv = mesh.num_vertices();
   std::vector<std::uint8_t> flags(nf, 0);
-  const double* V = mesh.V.data();
-  parallel_for_chunks(static_cast<std::size_t>(nf), kFaceChunk, threads, [&](std::size_t, std::size_t b, std::size_t e) {
-    for (auto f = static_cast<Index>(b); f < static_cast<Index>(e); ++f) {
-      if (is_degenerate_triangle(V + 3 * static_cast<std::ptrdiff_t>(mesh.F(f, 0)),
-                                 V + 3 * static_cast<std::ptrdiff_t>(mesh.F(f, 1)),
-                                 V + 3 * static_cast<std::ptrdiff_t>(mesh.F(f, 2)))) {
-        flags[f] |= kFlagDegenerate;
-      }
-    }
-  });
+  mark_degenerate_faces(mesh, flags, threads);
   // Undirected edges bucketed by their smaller vertex (counting sort), then counted within a
   // bucket with a per-vertex stamp: linear time, no hashing, no sorting.
   const Index* F = mesh.F.data();  // row-major #F by 3

@@ -30,6 +30,11 @@ std::vector<std::uint8_t> triangle_flags(const TriangleMesh& mesh,
                                          std::vector<std::uint8_t>* vertex_boundary,
                                          int threads = 1);
 
+/// Sets kFlagDegenerate in flags[f] (#F) where face f of `mesh` is degenerate
+/// (is_degenerate_triangle) and clears it elsewhere; the other bits are kept. `threads`: of the
+/// per-face loop (the result does not depend on it).
+void mark_degenerate_faces(const TriangleMesh& mesh, std::vector<std::uint8_t>& flags, int threads = 1);
+
 /// Axis-aligned box of every triangle (#F).
 std::vector<PrimBox> triangle_boxes(const TriangleMesh& mesh);
 
