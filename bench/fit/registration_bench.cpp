@@ -85,6 +85,12 @@ fit::FitOptions with_threads(const fit::FitOptions& o, int64_t threads) {
   return out;
 }
 
+// The correspondence benchmarks' label: which directions (range(0)), how many threads (range(1)).
+void label_search(benchmark::State& state) {
+  state.SetLabel(std::string(state.range(0) ? "model->scan + scan->model" : "model->scan") + ", " +
+                 std::to_string(state.range(1)) + " threads");
+}
+
 // Args: (with the reverse term, threads).
 void BM_Correspondences(benchmark::State& state) {
   auto& f = fixture();
@@ -96,8 +102,7 @@ void BM_Correspondences(benchmark::State& state) {
     problem.update_correspondences(20.0, 1, state.range(0) != 0);
   }
   state.counters["model_vertices"] = f.model.num_vertices();
-  state.SetLabel(std::string(state.range(0) ? "model->scan + scan->model" : "model->scan") + ", " +
-                 std::to_string(state.range(1)) + " threads");
+  label_search(state);
 }
 BENCHMARK(BM_Correspondences)->Args({0, 1})->Args({1, 1})->Args({0, 2})->Args({1, 2})->Unit(benchmark::kMillisecond);
 
@@ -123,8 +128,7 @@ void BM_CorrespondencesAtFit(benchmark::State& state) {
   state.counters["kept"] = static_cast<double>(problem.pairs().size());  // at the fitted pose
   state.counters["queries_per_s"] =
       benchmark::Counter(static_cast<double>(f.model.num_vertices()), benchmark::Counter::kIsIterationInvariantRate);
-  state.SetLabel(std::string(state.range(0) ? "model->scan + scan->model" : "model->scan") + ", " +
-                 std::to_string(state.range(1)) + " threads");
+  label_search(state);
 }
 BENCHMARK(BM_CorrespondencesAtFit)->Args({0, 1})->Args({1, 1})->Args({0, 2})->Args({1, 2})->Unit(benchmark::kMillisecond);
 

@@ -122,10 +122,7 @@ struct ClosestPointIndex::Impl {
     mesh.V = V;
     detail::mark_degenerate_faces(mesh, face_flags);
     vertex_normals = normals ? *normals : mesh::vertex_normals(mesh);
-    if (!detail::refit_bvh4(mesh, face_flags, blocks, wide)) {
-      build(1);
-      if (normals) vertex_normals = *normals;
-    }
+    if (!detail::refit_bvh4(mesh, face_flags, blocks, wide)) build(1);  // the same normals again
   }
 
   const double* vertex(Index face, int corner) const {
@@ -298,15 +295,10 @@ struct ClosestPointIndex::Impl {
         if (s <= r2) inside |= 1u << j;
       }
       if (inside == 0) continue;
-      // Slots are numbered in first-use order over (triangle, corner): the vertex of slot j is
-      // the corner where it first appears.
-      int next = 0;
-      for (int t = 0; t < h->count; ++t)
-        for (int k = 0; k < 3; ++k)
-          if (h->corner[t][k] == next) {
-            if (inside & (1u << next)) out.push_back(F[3 * static_cast<std::ptrdiff_t>(h->face[t]) + k]);
-            ++next;
-          }
+      Index verts[3 * kMaxLeafSize];
+      detail::leaf_block_vertices(*h, F, verts);
+      for (int j = 0; j < h->num_vertices; ++j)
+        if (inside & (1u << j)) out.push_back(verts[j]);
     }
   }
 

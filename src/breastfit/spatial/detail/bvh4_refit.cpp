@@ -16,28 +16,12 @@ bool refit_block(const TriangleMesh& mesh, const std::vector<std::uint8_t>& face
   unsigned char* base = line->bytes;
   LeafHeader h;
   std::memcpy(&h, base, sizeof h);
-  // The block's vertices in first-use order over (triangle, corner), as the build stored them.
+  for (int t = 0; t < h.count; ++t)
+    h.flags[t] = static_cast<std::uint8_t>((h.flags[t] & ~kFlagDegenerate) | (face_flags[h.face[t]] & kFlagDegenerate));
   Index verts[3 * kMaxLeafSize];
-  int next = 0;
-  for (int t = 0; t < h.count; ++t) {
-    const Index f = h.face[t];
-    h.flags[t] = static_cast<std::uint8_t>((h.flags[t] & ~kFlagDegenerate) | (face_flags[f] & kFlagDegenerate));
-    for (int k = 0; k < 3; ++k)
-      if (h.corner[t][k] == next) verts[next++] = mesh.F(f, k);
-  }
-  constexpr double kInf = std::numeric_limits<double>::infinity();
-  for (int k = 0; k < 3; ++k) {
-    lo[k] = kInf;
-    hi[k] = -kInf;
-  }
+  leaf_block_vertices(h, mesh.F.data(), verts);
   double c[9 * kMaxLeafSize];
-  for (int j = 0; j < h.num_vertices; ++j)
-    for (int k = 0; k < 3; ++k) {
-      const double x = mesh.V(verts[j], k);
-      c[3 * j + k] = x;
-      lo[k] = std::min(lo[k], x);
-      hi[k] = std::max(hi[k], x);
-    }
+  gather_leaf_corners(mesh.V.data(), verts, h.num_vertices, c, lo, hi);
   const std::size_t n = 3 * static_cast<std::size_t>(h.num_vertices);
   if (h.float_coords) {
     float f[9 * kMaxLeafSize];

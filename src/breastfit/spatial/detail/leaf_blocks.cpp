@@ -129,16 +129,8 @@ class BlockBuilder {
   void write(const LeafPlan& p, std::size_t lines, CacheLine* blocks, std::size_t line, BvhNode& n) const {
     const int nv = p.h.num_vertices;
     double c[9 * kMaxLeafSize];
-    constexpr double kInf = std::numeric_limits<double>::infinity();
-    double lo[3] = {kInf, kInf, kInf}, hi[3] = {-kInf, -kInf, -kInf};
-    for (int j = 0; j < nv; ++j) {
-      const double* v = V_ + 3 * static_cast<std::ptrdiff_t>(p.verts[j]);
-      for (int k = 0; k < 3; ++k) {
-        c[3 * j + k] = v[k];
-        lo[k] = std::min(lo[k], v[k]);
-        hi[k] = std::max(hi[k], v[k]);
-      }
-    }
+    double lo[3], hi[3];
+    gather_leaf_corners(V_, p.verts, nv, c, lo, hi);
     alignas(64) unsigned char buf[64 * kMaxBlockLines];
     std::memset(buf, 0, sizeof buf);
     std::memcpy(buf, &p.h, sizeof p.h);

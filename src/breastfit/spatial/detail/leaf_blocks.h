@@ -8,7 +8,9 @@
 /// Compared with a vertex-index indirection this needs no second memory hop, and compared with
 /// 3 corners per triangle it stores shared corners once (the query cost on a large mesh is
 /// dominated by cache misses).
+#include <algorithm>
 #include <cstddef>
+#include <limits>
 #include <cstdint>
 #include <vector>
 
@@ -40,6 +42,32 @@ using LeafBlocks = std::vector<CacheLine, UninitCacheAlignedAllocator<CacheLine>
 inline std::size_t leaf_block_lines(int num_vertices, bool float_coords) {
   const std::size_t bytes_per_vertex = float_coords ? 12 : 24;
   return (kLeafHeaderBytes + bytes_per_vertex * static_cast<std::size_t>(num_vertices) + 63) / 64;
+}
+
+/// The vertices of a block's corner slots, in slot order (first use over (triangle, corner), as
+/// the build numbers them), from the faces `F` (row-major #F by 3) into out[0, h.num_vertices).
+inline void leaf_block_vertices(const LeafHeader& h, const Index* F, Index* out) {
+  int next = 0;
+  for (int t = 0; t < h.count; ++t)
+    for (int k = 0; k < 3; ++k)
+      if (h.corner[t][k] == next) out[next++] = F[3 * static_cast<std::ptrdiff_t>(h.face[t]) + k];
+}
+
+/// The coordinates of vertices verts[0, nv) of V (row-major #V by 3) into c (3 per vertex) and
+/// their bounds into lo/hi: a block's corners and its box before rounding to float.
+inline void gather_leaf_corners(const double* V, const Index* verts, int nv, double* c, double lo[3], double hi[3]) {
+  for (int k = 0; k < 3; ++k) {
+    lo[k] = std::numeric_limits<double>::infinity();
+    hi[k] = -std::numeric_limits<double>::infinity();
+  }
+  for (int j = 0; j < nv; ++j) {
+    const double* v = V + 3 * static_cast<std::ptrdiff_t>(verts[j]);
+    for (int k = 0; k < 3; ++k) {
+      c[3 * j + k] = v[k];
+      lo[k] = std::min(lo[k], v[k]);
+      hi[k] = std::max(hi[k], v[k]);
+    }
+  }
 }
 
 /// The blocks of the leaves of `nodes` (an LBVH over the faces of `mesh`: a leaf's first/count
